@@ -1,0 +1,251 @@
+/*---------------------------------------------------------------------------*\
+  demFoam - the C11 discrete-element core.  Public API (the only header the
+  OpenFOAM side includes).
+
+  Conventions
+  - Opaque handle dem_world; create/destroy: dem_world_create(&w),
+    dem_world_destroy(&w) (destroy NULLs the pointer).
+  - Every call returns a dem_status.  On error the handle keeps a message
+    with the offending value and the source file/line
+    (dem_world_last_error).  The library never prints, exits or aborts;
+    diagnostics go through a logger callback the caller installs.
+  - SI units throughout.  Vectors are stored xyzxyz... (3 doubles per
+    particle) in structure-of-arrays form.
+  - Pointers returned by dem_world_arrays() stay valid until the next
+    resizing call: add/remove particles, insertion, dem_world_step() when
+    inlets or outlets are active, dem_world_restore(), unpack.
+  - Particles have a stable 64-bit global id separate from their storage
+    index; removal swaps with the last particle.  Owned particles occupy
+    indices [0, n_owned), ghost copies [n_owned, n_owned + n_ghost).
+\*---------------------------------------------------------------------------*/
+#ifndef DEM_H
+#define DEM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/*--- status codes (one X-macro list gives the enum and the messages) -------*/
+#define DEM_STATUS_LIST(X)                                                   \
+    X(DEM_OK,            "success")                                          \
+    X(DEM_ERR_NOMEM,     "out of memory")                                    \
+    X(DEM_ERR_ARG,       "invalid argument")                                 \
+    X(DEM_ERR_RANGE,     "value out of the allowed range")                   \
+    X(DEM_ERR_TIMESTEP,  "time step above the safe fraction of the contact time") \
+    X(DEM_ERR_NAN,       "non-finite value in the particle state")           \
+    X(DEM_ERR_OVERLAP,   "runaway overlap between particles or with a wall") \
+    X(DEM_ERR_FULL,      "could not place the requested particles")          \
+    X(DEM_ERR_IO,        "input/output error")                               \
+    X(DEM_ERR_FORMAT,    "unrecognised or incompatible state data")          \
+    X(DEM_ERR_STATE,     "call not allowed in the current state")            \
+    X(DEM_ERR_NOTFOUND,  "no such item")
+
+typedef enum {
+#define DEM_X_ENUM(name, text) name,
+    DEM_STATUS_LIST(DEM_X_ENUM)
+#undef DEM_X_ENUM
+    DEM_STATUS_COUNT
+} dem_status;
+
+/** Static text for a status code (never NULL). */
+const char *dem_status_string(dem_status s);
+
+typedef struct dem_world dem_world;
+
+/*--- logging ----------------------------------------------------------------*/
+typedef enum { DEM_LOG_DEBUG, DEM_LOG_INFO, DEM_LOG_WARNING } dem_log_level;
+typedef void (*dem_log_fn)(dem_log_level level, const char *message, void *user);
+
+/*--- world ------------------------------------------------------------------*/
+dem_status  dem_world_create(dem_world **w);
+void        dem_world_destroy(dem_world **w);
+/** Text of the last error on this handle, with file:line; "" if none. */
+const char *dem_world_last_error(const dem_world *w);
+void        dem_world_set_logger(dem_world *w, dem_log_fn fn, void *user);
+
+typedef enum {
+    DEM_CONTACT_HERTZ_MINDLIN = 0, /* [Z] Table 2: Hertz + Mindlin-Deresiewicz (delta_t,max), rolling friction */
+    DEM_CONTACT_LINEAR_SPRING_DASHPOT, /* [S] 17-26, f = 1 */
+    DEM_CONTACT_HERTZ_SPRING_DASHPOT,  /* [S] 17-26, f = sqrt(delta/d) */
+    DEM_CONTACT_LAW_COUNT
+} dem_contact_law;
+
+/** Name of a contact law ("hertzMindlin", "linearSpringDashpot",
+ *  "hertzSpringDashpot"); NULL for an invalid value. */
+const char *dem_contact_law_name(dem_contact_law law);
+/** Look a law up by the name above; DEM_ERR_NOTFOUND if none matches. */
+dem_status  dem_contact_law_from_name(const char *name, dem_contact_law *law);
+
+typedef struct {
+    dem_contact_law contact_law;
+    double dt;               /* time step [s], > 0 */
+    double gravity[3];       /* [m/s2] */
+    double domain_lo[3];     /* bounding box of the neighbour grid [m]; along */
+    double domain_hi[3];     /* a periodic axis it is the period */
+    int    periodic[3];      /* 1: periodic along that axis */
+    double skin;             /* Verlet skin [m]; <= 0: 0.2 x largest diameter */
+    double max_dt_fraction;  /* dt must be <= this x the smallest contact time; default 0.2 */
+    double max_overlap_ratio;/* stop with DEM_ERR_OVERLAP above this overlap/diameter; default 0.1 */
+    uint64_t seed;           /* random seed for insertion */
+} dem_config;
+
+/** Fill c with defaults: Hertz-Mindlin, dt 1e-6, gravity (0,0,-9.81), unit box, non-periodic. */
+void       dem_config_default(dem_config *c);
+/** Apply a configuration (checked; may be called again before particles exist). */
+dem_status dem_world_configure(dem_world *w, const dem_config *c);
+
+/*--- materials ------------------------------------------------------------*/
+/* Pairwise combination: 1/E* = (1-nu_i^2)/E_i + (1-nu_j^2)/E_j; friction,
+ * rolling friction and restitution: the smaller of the two (documented in
+ * docs/); linear stiffness: series combination (k_i k_j / (k_i + k_j)) for
+ * unlike materials, the value itself for like ones.
+ * Damping: give restitution in (0,1] and damping < 0, or damping >= 0 and
+ * restitution < 0; the other is derived (dem_world_material_get). */
+typedef struct {
+    double youngs_modulus;   /* E [Pa] (Hertz laws) */
+    double poisson_ratio;    /* nu in [0, 0.5) */
+    double stiffness_n;      /* k_n [N/m] (linear law) */
+    double stiffness_t;      /* k_t [N/m] (linear law); <= 0: 2/7 k_n */
+    double friction;         /* mu_s >= 0 */
+    double rolling_friction; /* mu_r >= 0, a length [m] */
+    double restitution;      /* e_n in (0,1]; < 0: derive from damping */
+    double damping;          /* Hertz-Mindlin: dimensionless c_n (= c_t);
+                                spring-dashpot: normal damping [N s/m];
+                                < 0: derive from restitution */
+} dem_material;
+
+dem_status dem_world_add_material(dem_world *w, const dem_material *m, int *material_id);
+/** The material as used, with the derived restitution or damping filled in. */
+dem_status dem_world_material_get(const dem_world *w, int material_id, dem_material *m);
+
+/*--- particles --------------------------------------------------------------*/
+typedef struct {
+    int64_t id;              /* < 0: assigned by the world (next free id) */
+    double  x[3], v[3], omega[3];
+    double  radius;          /* > 0 */
+    double  density;         /* > 0 */
+    int     material;
+} dem_particle;
+
+dem_status dem_world_add_particles(dem_world *w, size_t n, const dem_particle *p);
+/** Remove owned particle at storage index i (swap with last).  outlet >= 0
+ *  books it on that outlet (count, mass, record); -1 books nothing. */
+dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet);
+
+typedef struct {
+    size_t n_owned, n_ghost;
+    const int64_t *id;
+    double *x, *v, *omega;          /* 3 per particle; writable */
+    const double *radius, *mass, *density;
+    const int *material;
+    double *force_ext, *torque_ext; /* 3 per particle: added every step until changed (fluid forces) */
+    double *drag_coeff;             /* K_i [kg/s]: drag K_i (u_fluid,i - v_i), integrated implicitly */
+    double *fluid_velocity;         /* u_fluid,i, 3 per particle */
+    double *drag_impulse;           /* 3 per particle: sum over steps of K_i (u_fluid,i - v_i) dt
+                                       with the implicit end-of-step velocity; reset by the caller */
+} dem_arrays;
+
+/** Direct access to the particle arrays (see validity rule at the top). */
+dem_status dem_world_arrays(dem_world *w, dem_arrays *a);
+size_t     dem_world_count(const dem_world *w);     /* owned particles */
+double     dem_world_time(const dem_world *w);
+int64_t    dem_world_step_count(const dem_world *w);
+
+/** Advance nsteps time steps (velocity Verlet; drag semi-implicit). */
+dem_status dem_world_step(dem_world *w, int64_t nsteps);
+
+/** Smallest contact time estimate over the material pairs and particle
+ *  sizes present (Hertz: at the given impact speed; linear: t_c of [S]). */
+dem_status dem_world_contact_time(const dem_world *w, double impact_speed, double *t_contact);
+
+/*--- walls --------------------------------------------------------------------*/
+dem_status dem_world_add_plane(dem_world *w, const double point[3], const double normal[3],
+                               int material, const double velocity[3], int *wall_id);
+/** Triangle mesh wall: vertices 3*nv doubles, triangles 3*ntri vertex indices.
+ *  Contacts with faces, edges and vertices, counted once where triangles
+ *  share an edge or vertex. */
+dem_status dem_world_add_trimesh(dem_world *w, size_t nv, const double *vertices,
+                                 size_t ntri, const int *triangles, int material,
+                                 const double velocity[3], int *wall_id);
+dem_status dem_world_set_wall_velocity(dem_world *w, int wall_id, const double velocity[3]);
+
+/*--- insertion ----------------------------------------------------------------*/
+typedef enum { DEM_DIST_FIXED, DEM_DIST_UNIFORM, DEM_DIST_NORMAL, DEM_DIST_DISCRETE } dem_dist_kind;
+typedef struct {
+    dem_dist_kind kind;
+    double a, b;             /* fixed: a; uniform: [a, b]; normal: mean a, std dev b (truncated at +-3 b) */
+    size_t n;                /* discrete: n values with weights (need not sum to 1) */
+    const double *values, *weights;
+} dem_distribution;
+
+typedef struct {
+    dem_distribution diameter, density;
+    int    material;
+    double velocity[3];
+} dem_particle_template;
+
+typedef int (*dem_inside_fn)(const double x[3], void *user);
+
+/** Place n non-overlapping particles in the box (also inside the optional
+ *  test).  DEM_ERR_FULL with *inserted < n if they do not fit. */
+dem_status dem_world_fill_box(dem_world *w, const double lo[3], const double hi[3],
+                              dem_inside_fn inside, void *user, size_t n,
+                              const dem_particle_template *t, size_t *inserted);
+dem_status dem_world_fill_cylinder(dem_world *w, const double base[3], const double axis[3],
+                                   double radius, double length, size_t n,
+                                   const dem_particle_template *t, size_t *inserted);
+
+typedef enum { DEM_RATE_NUMBER, DEM_RATE_MASS } dem_rate_kind;
+/** Stream insertion through a planar polygon (nv vertices, 3*nv doubles) at a
+ *  rate [1/s or kg/s] between t_start and t_end, with the template velocity. */
+dem_status dem_world_add_inlet(dem_world *w, size_t nv, const double *polygon,
+                               dem_rate_kind kind, double rate, double t_start, double t_end,
+                               const dem_particle_template *t, int *inlet_id);
+
+/*--- outlets and deletion -----------------------------------------------------*/
+/** Outlet that deletes particles whose centre is beyond a plane (on the side the normal points to). */
+dem_status dem_world_add_outlet_plane(dem_world *w, const double point[3], const double normal[3], int *outlet_id);
+/** Outlet that deletes particles whose centre is inside a box. */
+dem_status dem_world_add_outlet_box(dem_world *w, const double lo[3], const double hi[3], int *outlet_id);
+/** Outlet with no geometry: particles are booked on it by dem_world_remove_particle. */
+dem_status dem_world_add_outlet(dem_world *w, int *outlet_id);
+
+typedef struct { int64_t id; double time, diameter, density; int outlet; } dem_removed_record;
+dem_status dem_world_outlet_totals(const dem_world *w, int outlet_id, int64_t *count, double *mass);
+/** Records of removed particles since the last clear (pointer valid until the next step or clear). */
+dem_status dem_world_removed_records(const dem_world *w, const dem_removed_record **records, size_t *n);
+void       dem_world_clear_removed_records(dem_world *w);
+
+/*--- diagnostics ----------------------------------------------------------------*/
+typedef struct {
+    double kinetic_energy, rotational_energy;  /* [J] */
+    double momentum[3];
+    double max_overlap_ratio;                  /* max overlap / diameter (pairs and walls) */
+    size_t pair_contacts, wall_contacts;
+    int64_t inserted, removed;
+} dem_stats;
+dem_status dem_world_stats(const dem_world *w, dem_stats *s);
+/** Per owned particle: coordination number (particle contacts) and the sum
+ *  of contact forces (3 per particle).  Either pointer may be NULL. */
+dem_status dem_world_particle_contacts(const dem_world *w, int *coordination, double *contact_force);
+
+/*--- state ----------------------------------------------------------------------*/
+/** Full state incl. contact history, inlets, outlet accounting and RNG; a
+ *  restored world continues bit-identically. */
+dem_status dem_world_save(const dem_world *w, const char *path);
+dem_status dem_world_restore(dem_world *w, const char *path);
+
+/*--- decomposition support --------------------------------------------------------*/
+/** Bytes needed to pack particle i with its contact history (buf NULL) or pack it. */
+dem_status dem_world_pack_particle(const dem_world *w, size_t index, void *buf, size_t *size);
+/** Unpack a particle as owned (ghost = 0) or as a ghost copy (ghost = 1). */
+dem_status dem_world_unpack_particle(dem_world *w, const void *buf, size_t size, int ghost);
+dem_status dem_world_clear_ghosts(dem_world *w);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* DEM_H */
