@@ -1,0 +1,107 @@
+/*---------------------------------------------------------------------------*\
+  demFoam
+
+Application
+    demFoam
+
+Description
+    Transient incompressible CFD-DEM solver: PIMPLE for the fluid with the
+    fluid volume fraction eps (continuity d(eps)/dt + div(eps u) = 0), the
+    particles in the C DEM core (src/dem) coupled by the momentum
+    formulation set I, II or III of Zhou et al. (2010), physics.md
+    section 4 (constant/demProperties, keyword formulation).
+
+    Fluid momentum equation (kinematic, p = p/rho_f):
+        ddt(eps, U) + div(eps phi, U) + c divDevReff(U)
+          = -c grad p + eps g + S/rho_f,
+    c = 1 (sets I, III) or eps (set II); S, the particles' momentum source,
+    holds -F of the set with the drag semi-implicit (demCoupling::SU).
+    Turbulence models (laminar, RAS, LES), fvOptions and function objects
+    are selected as usual.
+
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "singlePhaseTransportModel.H"
+#include "turbulentTransportModel.H"
+#include "pimpleControl.H"
+#include "fvOptions.H"
+#include "demCoupling.H"
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Transient incompressible CFD-DEM solver with the momentum"
+        " formulations set I/II/III of Zhou et al. (2010)"
+    );
+
+    #include "postProcess.H"
+
+    #include "addCheckCaseOptions.H"
+    #include "setRootCaseLists.H"
+    #include "createTime.H"
+    #include "createMesh.H"
+    #include "createControl.H"
+    #include "createTimeControls.H"
+    #include "createFields.H"
+    #include "initContinuityErrs.H"
+
+    Info<< "\nStarting time loop\n" << endl;
+
+    while (runTime.run())
+    {
+        #include "readTimeControls.H"
+        #include "CourantNo.H"
+        #include "setDeltaT.H"
+
+        ++runTime;
+
+        Info<< "Time = " << runTime.timeName() << nl << endl;
+
+        // The DEM part of the step, with the fluid fields of the last step
+        {
+            const volVectorField divTau
+            (
+                "divTau",
+                fvc::div(turbulence->nuEff()*dev2(T(fvc::grad(U))))
+              + fvc::laplacian(turbulence->nuEff(), U)
+            );
+            dem.evolve(U, p, divTau, laminarTransport.nu()());
+        }
+
+        epsf = fvc::interpolate(eps);
+        epsPhi = epsf*phi;
+
+        // --- Pressure-velocity PIMPLE corrector loop
+        while (pimple.loop())
+        {
+            #include "UEqn.H"
+
+            // --- Pressure corrector loop
+            while (pimple.correct())
+            {
+                #include "pEqn.H"
+            }
+
+            if (pimple.turbCorr())
+            {
+                laminarTransport.correct();
+                turbulence->correct();
+            }
+        }
+
+        if (runTime.writeTime())
+        {
+            dem.write();
+        }
+
+        runTime.write();
+
+        runTime.printExecutionTime(Info);
+    }
+
+    Info<< "End\n" << endl;
+
+    return 0;
+}

@@ -1,0 +1,1031 @@
+#include "demCoupling.H"
+#include "fvc.H"
+#include "fvm.H"
+#include "emptyPolyPatch.H"
+#include "wallPolyPatch.H"
+#include "cyclicPolyPatch.H"
+#include "mathematicalConstants.H"
+#include "OSspecific.H"
+
+using namespace Foam::constant::mathematical;
+
+// * * * * * * * * * * * * * * * * Helpers * * * * * * * * * * * * * * * * //
+
+namespace
+{
+    Foam::IOobject fieldIO
+    (
+        const Foam::fvMesh& mesh,
+        const Foam::word& name,
+        const bool write
+    )
+    {
+        return Foam::IOobject
+        (
+            name,
+            mesh.time().timeName(),
+            mesh,
+            Foam::IOobject::NO_READ,
+            write ? Foam::IOobject::AUTO_WRITE : Foam::IOobject::NO_WRITE
+        );
+    }
+
+    Foam::vector toVec(const double* a, const Foam::label i)
+    {
+        return Foam::vector(a[3*i], a[3*i+1], a[3*i+2]);
+    }
+
+    void setVec(double* a, const Foam::label i, const Foam::vector& v)
+    {
+        a[3*i] = v.x(); a[3*i+1] = v.y(); a[3*i+2] = v.z();
+    }
+}
+
+
+// * * * * * * * * * * * * * * * * Constructor * * * * * * * * * * * * * * //
+
+Foam::demCoupling::demCoupling
+(
+    const fvMesh& mesh,
+    const uniformDimensionedVectorField& g,
+    const scalar rhof
+)
+:
+    mesh_(mesh),
+    dict_
+    (
+        IOobject
+        (
+            "demProperties",
+            mesh.time().constant(),
+            mesh,
+            IOobject::MUST_READ_IF_MODIFIED,
+            IOobject::NO_WRITE
+        )
+    ),
+    g_(g.value()),
+    rhof_(rhof),
+    world_(),
+    locator_(mesh, dict_.getOrDefault<label>("maxWalkSteps", 50)),
+    formulation_(couplingFormulation::New(dict_)),
+    drag_(dragModel::New(dict_)),
+    voidage_(voidageModel::New(dict_, mesh, locator_)),
+    cellMeanDrag_(false),
+    frozen_(dict_.getOrDefault<bool>("frozen", false)),
+    epsMin_(dict_.getOrDefault<scalar>("epsMin", 0.1)),
+    etaWarning_(dict_.getOrDefault<scalar>("etaWarning", 20.0)),
+    demDt_(0),
+    dragUpdateInterval_(0),
+    nSubCycles_(0),
+    lostUnknown_(0),
+    nLastCoupled_(0),
+    bedEta_(0),
+    balanceFluid_(0),
+    balanceParticle_(0),
+    balanceFluidVec_(Zero),
+    balanceParticleVec_(Zero),
+    solidVolumeMesh_(0),
+    solidVolumeParticles_(0),
+    eps_(fieldIO(mesh, "eps", true), mesh, dimensionedScalar("one", dimless, 1.0),
+         "zeroGradient"),
+    epsRaw_(fieldIO(mesh, "epsRaw", false), mesh, dimensionedScalar("one", dimless, 1.0)),
+    Up_(fieldIO(mesh, "Up", true), mesh, dimensionedVector(dimVelocity, Zero),
+        "zeroGradient"),
+    Kc_(fieldIO(mesh, "Kdrag", true), mesh,
+        dimensionedScalar(dimDensity/dimTime, Zero)),
+    F_(fieldIO(mesh, "Fexchange", false), mesh,
+       dimensionedVector(dimForce/dimVolume, Zero)),
+    Ucoup_(fieldIO(mesh, "Ucoupling", false), mesh,
+           dimensionedVector(dimVelocity, Zero)),
+    source_(fieldIO(mesh, "demMomentumSource", true), mesh,
+            dimensionedVector(dimForce/dimVolume, Zero)),
+    eta_(fieldIO(mesh, "eta", true), mesh, dimensionedScalar(dimless, Zero)),
+    pCoeff_(fieldIO(mesh, "pressureCoeff", false), mesh,
+            dimensionedScalar("one", dimless, 1.0), "zeroGradient")
+{
+    const word scheme(dict_.getOrDefault<word>("dragScheme", "perParticle"));
+    if (scheme == "cellMean")
+    {
+        cellMeanDrag_ = true;
+    }
+    else if (scheme != "perParticle")
+    {
+        FatalIOErrorInFunction(dict_)
+            << "dragScheme " << scheme << " in " << dict_.name()
+            << ": allowed perParticle (default) or cellMean"
+            << exit(FatalIOError);
+    }
+    if (epsMin_ <= 0 || epsMin_ >= 1)
+    {
+        FatalIOErrorInFunction(dict_)
+            << "epsMin " << epsMin_ << " in " << dict_.name()
+            << ": allowed 0 < epsMin < 1" << exit(FatalIOError);
+    }
+
+    const dictionary& demDict = dict_.subDict("dem");
+    demDt_ = demDict.get<scalar>("timeStep");
+    dragUpdateInterval_ = demDict.getOrDefault<label>("dragUpdateInterval", 0);
+
+    configureWorld();
+    addWalls();
+    addOutletsAndInlets();
+
+    const fileName state
+    (
+        mesh.time().timePath()/"uniform"/"demState.bin"
+    );
+    if (isFile(state))
+    {
+        Info<< "demCoupling: restoring the DEM state from " << state << endl;
+        world_.check
+        (
+            dem_world_restore(world_, state.c_str()),
+            "dem_world_restore"
+        );
+    }
+    else
+    {
+        addInitialParticles();
+        const scalar tSettle = dict_.getOrDefault<scalar>("settlingTime", 0);
+        if (tSettle > 0)
+        {
+            const int64_t n = int64_t(tSettle/demDt_ + 0.5);
+            Info<< "demCoupling: settling " << n << " DEM steps ("
+                << tSettle << " s) without fluid" << endl;
+            world_.check(dem_world_step(world_, n), "dem_world_step (settling)");
+        }
+    }
+
+    eps_.oldTime();
+    locateAll();
+    computeWeights();
+    computeVoidage();
+    eps_.oldTime() == eps_;
+
+    Info<< "demCoupling: " << dem_world_count(world_) << " particles, "
+        << "formulation " << dict_.get<word>("formulation")
+        << ", drag " << dict_.get<word>("dragModel")
+        << (cellMeanDrag_ ? " (cell-mean)" : " (per particle)")
+        << ", solid volume " << solidVolumeParticles_ << " m3" << nl << endl;
+}
+
+
+// * * * * * * * * * * * * * * * Setup * * * * * * * * * * * * * * * * * * //
+
+Foam::label Foam::demCoupling::materialId
+(
+    const word& name,
+    const dictionary& d
+) const
+{
+    if (!materialIds_.found(name))
+    {
+        FatalIOErrorInFunction(d)
+            << "material " << name << " in " << d.name()
+            << " is not defined in materials; defined: "
+            << materialIds_.sortedToc() << exit(FatalIOError);
+    }
+    return materialIds_[name];
+}
+
+
+void Foam::demCoupling::configureWorld()
+{
+    const dictionary& d = dict_.subDict("dem");
+
+    dem_config c;
+    dem_config_default(&c);
+
+    const word law(d.getOrDefault<word>("contactLaw", "hertzMindlin"));
+    if (dem_contact_law_from_name(law.c_str(), &c.contact_law) != DEM_OK)
+    {
+        wordList valid;
+        for (int l = 0; l < DEM_CONTACT_LAW_COUNT; ++l)
+        {
+            const char* nm = dem_contact_law_name(dem_contact_law(l));
+            if (nm) valid.append(word(nm));
+        }
+        FatalIOErrorInFunction(d)
+            << "contactLaw " << law << " in " << d.name()
+            << ": allowed " << valid << exit(FatalIOError);
+    }
+
+    c.dt = demDt_;
+    for (direction k = 0; k < 3; ++k) c.gravity[k] = g_[k];
+
+    const boundBox& bb = mesh_.bounds();
+    const scalar margin =
+        d.getOrDefault<scalar>("domainMargin", 0.05*cmptMax(bb.span()));
+    for (direction k = 0; k < 3; ++k)
+    {
+        c.domain_lo[k] = bb.min()[k] - margin;
+        c.domain_hi[k] = bb.max()[k] + margin;
+        c.periodic[k] = 0;
+    }
+
+    // cyclic patches -> periodic axes (translational, axis-aligned)
+    for (const polyPatch& pp : mesh_.boundaryMesh())
+    {
+        if (isA<cyclicPolyPatch>(pp) && pp.size())
+        {
+            const vector n = pp.faceAreas()[0]/mag(pp.faceAreas()[0]);
+            const direction k = findMax(cmptMag(n));
+            if (mag(n[k]) < 1 - 1e-6)
+            {
+                FatalErrorInFunction
+                    << "cyclic patch " << pp.name() << " is not normal to a "
+                    << "coordinate axis (normal " << n << "); only "
+                    << "axis-aligned translational cyclics become DEM "
+                    << "periodic boundaries" << exit(FatalError);
+            }
+            c.periodic[k] = 1;
+            c.domain_lo[k] = bb.min()[k];
+            c.domain_hi[k] = bb.max()[k];
+            Info<< "demCoupling: cyclic patch " << pp.name()
+                << " -> DEM periodic along " << vector::componentNames[k]
+                << endl;
+        }
+    }
+
+    c.skin = d.getOrDefault<scalar>("skin", -1);
+    c.max_dt_fraction = d.getOrDefault<scalar>("maxDtFraction", c.max_dt_fraction);
+    c.max_overlap_ratio =
+        d.getOrDefault<scalar>("maxOverlapRatio", c.max_overlap_ratio);
+    c.seed = uint64_t(d.getOrDefault<label>("seed", 1));
+
+    world_.check(dem_world_configure(world_, &c), "dem_world_configure");
+
+    // materials (in the order given)
+    const dictionary& mats = dict_.subDict("materials");
+    for (const entry& e : mats)
+    {
+        if (!e.isDict()) continue;
+        const dictionary& md = e.dict();
+        dem_material m;
+        m.youngs_modulus = md.getOrDefault<scalar>("youngsModulus", 0);
+        m.poisson_ratio = md.getOrDefault<scalar>("poissonRatio", 0.3);
+        m.stiffness_n = md.getOrDefault<scalar>("stiffnessN", 0);
+        m.stiffness_t = md.getOrDefault<scalar>("stiffnessT", -1);
+        m.friction = md.getOrDefault<scalar>("friction", 0.4);
+        m.rolling_friction = md.getOrDefault<scalar>("rollingFriction", 0);
+        m.restitution = md.getOrDefault<scalar>("restitution", -1);
+        m.damping = md.getOrDefault<scalar>("damping", -1);
+        if (m.restitution < 0 && m.damping < 0)
+        {
+            FatalIOErrorInFunction(md)
+                << "material " << e.keyword() << " in " << md.name()
+                << ": give restitution (0 < e <= 1) or damping (>= 0)"
+                << exit(FatalIOError);
+        }
+        int id;
+        world_.check(dem_world_add_material(world_, &m, &id), "dem_world_add_material");
+        materialIds_.insert(e.keyword(), id);
+    }
+    if (materialIds_.empty())
+    {
+        FatalIOErrorInFunction(mats)
+            << "no material in " << mats.name() << exit(FatalIOError);
+    }
+}
+
+
+void Foam::demCoupling::addWalls()
+{
+    const word wallMat(dict_.get<word>("wallMaterial"));
+    const int mat = materialId(wallMat, dict_);
+    const double zeroVel[3] = {0, 0, 0};
+
+    const wordList extraWalls
+    (
+        dict_.getOrDefault<wordList>("wallPatches", wordList())
+    );
+
+    for (const polyPatch& pp : mesh_.boundaryMesh())
+    {
+        if (!pp.size()) continue;
+
+        if (isA<emptyPolyPatch>(pp))
+        {
+            // one plane per distinct face plane (front and back of 2-D meshes)
+            List<vector> ns;
+            List<point> ps;
+            forAll(pp, i)
+            {
+                const vector n = pp.faceAreas()[i]/mag(pp.faceAreas()[i]);
+                const point& c = pp.faceCentres()[i];
+                bool known = false;
+                forAll(ns, k)
+                {
+                    if ((ns[k] & n) > 1 - 1e-6 && mag((c - ps[k]) & n) < 1e-9)
+                    {
+                        known = true;
+                        break;
+                    }
+                }
+                if (!known)
+                {
+                    ns.append(n);
+                    ps.append(c);
+                }
+            }
+            forAll(ns, k)
+            {
+                // DEM plane normal points into the domain
+                const vector nIn = -ns[k];
+                int id;
+                world_.check
+                (
+                    dem_world_add_plane
+                    (
+                        world_, ps[k].cdata(), nIn.cdata(), mat, zeroVel, &id
+                    ),
+                    "dem_world_add_plane"
+                );
+                Info<< "demCoupling: empty patch " << pp.name()
+                    << " -> DEM plane at " << ps[k] << " normal " << nIn << endl;
+            }
+        }
+        else if (isA<wallPolyPatch>(pp) || extraWalls.found(pp.name()))
+        {
+            const pointField& lp = pp.localPoints();
+            const faceList& lf = pp.localFaces();
+            List<double> verts(3*lp.size());
+            forAll(lp, i)
+            {
+                for (direction k = 0; k < 3; ++k) verts[3*i+k] = lp[i][k];
+            }
+            DynamicList<int> tris;
+            for (const face& f : lf)
+            {
+                for (label k = 1; k + 1 < f.size(); ++k)
+                {
+                    tris.append(f[0]);
+                    tris.append(f[k]);
+                    tris.append(f[k+1]);
+                }
+            }
+            int id;
+            world_.check
+            (
+                dem_world_add_trimesh
+                (
+                    world_, lp.size(), verts.cdata(), tris.size()/3,
+                    tris.cdata(), mat, zeroVel, &id
+                ),
+                "dem_world_add_trimesh"
+            );
+            Info<< "demCoupling: wall patch " << pp.name() << " -> DEM wall of "
+                << tris.size()/3 << " triangles" << endl;
+        }
+    }
+}
+
+
+namespace
+{
+    // Convex hull (monotone chain) of 2-D points, counter-clockwise
+    Foam::labelList convexHull(const Foam::List<Foam::vector2D>& p)
+    {
+        using namespace Foam;
+        labelList idx(identity(p.size()));
+        std::sort
+        (
+            idx.begin(), idx.end(),
+            [&](label a, label b)
+            {
+                return p[a].x() < p[b].x()
+                    || (p[a].x() == p[b].x() && p[a].y() < p[b].y());
+            }
+        );
+        auto cross = [&](label o, label a, label b)
+        {
+            return (p[a].x() - p[o].x())*(p[b].y() - p[o].y())
+                 - (p[a].y() - p[o].y())*(p[b].x() - p[o].x());
+        };
+        DynamicList<label> h;
+        for (const label i : idx)
+        {
+            while (h.size() >= 2 && cross(h[h.size()-2], h.last(), i) <= 0)
+            {
+                h.remove();
+            }
+            h.append(i);
+        }
+        const label lower = h.size() + 1;
+        for (label k = idx.size() - 2; k >= 0; --k)
+        {
+            const label i = idx[k];
+            while (h.size() >= lower && cross(h[h.size()-2], h.last(), i) <= 0)
+            {
+                h.remove();
+            }
+            h.append(i);
+        }
+        h.remove();
+        return labelList(h);
+    }
+}
+
+
+void Foam::demCoupling::addOutletsAndInlets()
+{
+    const polyBoundaryMesh& bm = mesh_.boundaryMesh();
+    lostPerPatch_.setSize(bm.size(), 0);
+
+    const wordList outlets
+    (
+        dict_.getOrDefault<wordList>("outletPatches", wordList())
+    );
+    for (const word& name : outlets)
+    {
+        const label patchi = bm.findPatchID(name);
+        if (patchi < 0)
+        {
+            FatalIOErrorInFunction(dict_)
+                << "outletPatches entry " << name << " in " << dict_.name()
+                << " is not a patch; patches: " << bm.names()
+                << exit(FatalIOError);
+        }
+        int id;
+        world_.check(dem_world_add_outlet(world_, &id), "dem_world_add_outlet");
+        outletPatches_.append(patchi);
+        outletIds_.append(id);
+    }
+
+    if (!dict_.found("inlets")) return;
+
+    const dictionary& inl = dict_.subDict("inlets");
+    for (const entry& e : inl)
+    {
+        if (!e.isDict()) continue;
+        const dictionary& d = e.dict();
+        const word patchName(d.get<word>("patch"));
+        const label patchi = bm.findPatchID(patchName);
+        if (patchi < 0 || !bm[patchi].size())
+        {
+            FatalIOErrorInFunction(d)
+                << "inlets/" << e.keyword() << "/patch " << patchName
+                << " in " << d.name() << " is not a non-empty patch; patches: "
+                << bm.names() << exit(FatalIOError);
+        }
+        const polyPatch& pp = bm[patchi];
+        // polygon: convex hull of the patch points in the patch plane
+        vector n = sum(pp.faceAreas());
+        n /= mag(n);
+        const point c0 = sum(pp.faceCentres())/pp.size();
+        vector e1 = pp.localPoints()[0] - c0;
+        e1 -= (e1 & n)*n;
+        e1 /= mag(e1);
+        const vector e2 = n ^ e1;
+        const pointField& lp = pp.localPoints();
+        List<vector2D> p2(lp.size());
+        forAll(lp, i)
+        {
+            p2[i] = vector2D((lp[i] - c0) & e1, (lp[i] - c0) & e2);
+        }
+        const labelList hull(convexHull(p2));
+        List<double> poly(3*hull.size());
+        forAll(hull, k)
+        {
+            // shifted a little into the domain
+            const point x = c0 + p2[hull[k]].x()*e1 + p2[hull[k]].y()*e2;
+            for (direction j = 0; j < 3; ++j) poly[3*k+j] = x[j];
+        }
+
+        PtrList<scalarField> store;
+        dem_particle_template t;
+        t.diameter = readDistribution(d, "diameter", store);
+        t.density = readDistribution(d, "density", store);
+        t.material = materialId(d.get<word>("material"), d);
+        const vector v(d.getOrDefault<vector>("velocity", Zero));
+        for (direction j = 0; j < 3; ++j) t.velocity[j] = v[j];
+
+        const word kind(d.getOrDefault<word>("rateType", "number"));
+        if (kind != "number" && kind != "mass")
+        {
+            FatalIOErrorInFunction(d)
+                << "rateType " << kind << " in " << d.name()
+                << ": allowed number, mass" << exit(FatalIOError);
+        }
+        int id;
+        world_.check
+        (
+            dem_world_add_inlet
+            (
+                world_, hull.size(), poly.cdata(),
+                kind == "mass" ? DEM_RATE_MASS : DEM_RATE_NUMBER,
+                d.get<scalar>("rate"),
+                d.getOrDefault<scalar>("start", 0),
+                d.getOrDefault<scalar>("end", GREAT),
+                &t, &id
+            ),
+            "dem_world_add_inlet"
+        );
+        Info<< "demCoupling: inlet " << e.keyword() << " on patch "
+            << patchName << endl;
+    }
+}
+
+
+dem_distribution Foam::demCoupling::readDistribution
+(
+    const dictionary& parent,
+    const word& key,
+    PtrList<scalarField>& store
+) const
+{
+    dem_distribution dist;
+    dist.n = 0;
+    dist.values = nullptr;
+    dist.weights = nullptr;
+    dist.a = dist.b = 0;
+
+    if (!parent.isDict(key))
+    {
+        dist.kind = DEM_DIST_FIXED;
+        dist.a = parent.get<scalar>(key);
+        return dist;
+    }
+    const dictionary& d = parent.subDict(key);
+    const word type(d.get<word>("type"));
+    if (type == "fixed")
+    {
+        dist.kind = DEM_DIST_FIXED;
+        dist.a = d.get<scalar>("value");
+    }
+    else if (type == "uniform")
+    {
+        dist.kind = DEM_DIST_UNIFORM;
+        dist.a = d.get<scalar>("min");
+        dist.b = d.get<scalar>("max");
+    }
+    else if (type == "normal")
+    {
+        dist.kind = DEM_DIST_NORMAL;
+        dist.a = d.get<scalar>("mean");
+        dist.b = d.get<scalar>("stdDev");
+    }
+    else if (type == "discrete")
+    {
+        dist.kind = DEM_DIST_DISCRETE;
+        // store is sized by the caller's needs; keep data alive there
+        store.append(new scalarField(d.get<scalarField>("values")));
+        store.append(new scalarField(d.get<scalarField>("weights")));
+        const scalarField& vals = store[store.size()-2];
+        const scalarField& wts = store[store.size()-1];
+        if (vals.size() != wts.size() || vals.empty())
+        {
+            FatalIOErrorInFunction(d)
+                << key << " in " << d.name() << ": values and weights must "
+                << "have the same non-zero length" << exit(FatalIOError);
+        }
+        dist.n = vals.size();
+        dist.values = vals.cdata();
+        dist.weights = wts.cdata();
+    }
+    else
+    {
+        FatalIOErrorInFunction(d)
+            << key << "/type " << type << " in " << d.name()
+            << ": allowed fixed, uniform, normal, discrete"
+            << exit(FatalIOError);
+    }
+    return dist;
+}
+
+
+void Foam::demCoupling::addInitialParticles()
+{
+    if (!dict_.found("initialParticles")) return;
+    const dictionary& all = dict_.subDict("initialParticles");
+    for (const entry& e : all)
+    {
+        if (!e.isDict()) continue;
+        const dictionary& d = e.dict();
+        const word type(d.get<word>("type"));
+        const int mat = materialId(d.get<word>("material"), d);
+        const vector v(d.getOrDefault<vector>("velocity", Zero));
+
+        if (type == "list")
+        {
+            const List<point> pos(d.get<List<point>>("positions"));
+            const scalar dia = d.get<scalar>("diameter");
+            const scalar rho = d.get<scalar>("density");
+            List<dem_particle> ps(pos.size());
+            forAll(pos, i)
+            {
+                dem_particle& p = ps[i];
+                p.id = -1;
+                for (direction k = 0; k < 3; ++k)
+                {
+                    p.x[k] = pos[i][k];
+                    p.v[k] = v[k];
+                    p.omega[k] = 0;
+                }
+                p.radius = 0.5*dia;
+                p.density = rho;
+                p.material = mat;
+            }
+            world_.check
+            (
+                dem_world_add_particles(world_, ps.size(), ps.cdata()),
+                "dem_world_add_particles"
+            );
+            Info<< "demCoupling: " << e.keyword() << ": " << ps.size()
+                << " particles from a list" << endl;
+        }
+        else if (type == "box")
+        {
+            const point lo(d.get<point>("min"));
+            const point hi(d.get<point>("max"));
+            const label n = d.get<label>("number");
+            PtrList<scalarField> store;
+            dem_particle_template t;
+            t.diameter = readDistribution(d, "diameter", store);
+            t.density = readDistribution(d, "density", store);
+            t.material = mat;
+            for (direction k = 0; k < 3; ++k) t.velocity[k] = v[k];
+            size_t inserted = 0;
+            const dem_status s = dem_world_fill_box
+            (
+                world_, lo.cdata(), hi.cdata(), nullptr, nullptr, size_t(n),
+                &t, &inserted
+            );
+            if (s == DEM_ERR_FULL)
+            {
+                FatalIOErrorInFunction(d)
+                    << "initialParticles/" << e.keyword() << " in "
+                    << d.name() << ": only " << label(inserted) << " of "
+                    << n << " particles fit into the box " << lo << " "
+                    << hi << "; enlarge the box or lower number"
+                    << exit(FatalIOError);
+            }
+            world_.check(s, "dem_world_fill_box");
+            Info<< "demCoupling: " << e.keyword() << ": " << label(inserted)
+                << " particles in box " << lo << " " << hi << endl;
+        }
+        else
+        {
+            FatalIOErrorInFunction(d)
+                << "initialParticles/" << e.keyword() << "/type " << type
+                << " in " << d.name() << ": allowed box, list"
+                << exit(FatalIOError);
+        }
+    }
+}
+
+
+// * * * * * * * * * * * * * * Per-step work  * * * * * * * * * * * * * * * //
+
+void Foam::demCoupling::locateAll()
+{
+    dem_arrays a = world_.arrays();
+    const label n = label(a.n_owned);
+
+    DynamicList<label> leaving;
+    DynamicList<label> leavingPatch;
+
+    for (label i = 0; i < n; ++i)
+    {
+        const int64_t id = a.id[i];
+        if (id >= hostById_.size())
+        {
+            const label old = hostById_.size();
+            hostById_.setSize(max(label(id + 1), 2*old + 16));
+            for (label k = old; k < hostById_.size(); ++k) hostById_[k] = -1;
+        }
+        label exitFace = -1;
+        const label c = locator_.locate(toVec(a.x, i), hostById_[id], exitFace);
+        hostById_[id] = c;
+        if (c < 0)
+        {
+            leaving.append(i);
+            leavingPatch.append
+            (
+                exitFace >= 0 ? mesh_.boundaryMesh().whichPatch(exitFace) : -1
+            );
+        }
+    }
+
+    // remove from the highest index down (removal swaps with the last)
+    label nOut = 0, nLost = 0;
+    for (label k = leaving.size() - 1; k >= 0; --k)
+    {
+        const label patchi = leavingPatch[k];
+        const label o = (patchi >= 0 ? outletPatches_.find(patchi) : -1);
+        if (o >= 0)
+        {
+            ++nOut;
+        }
+        else
+        {
+            ++nLost;
+            if (patchi >= 0) ++lostPerPatch_[patchi]; else ++lostUnknown_;
+            const vector x(toVec(a.x, leaving[k]));
+            WarningInFunction
+                << "particle " << label(a.id[leaving[k]]) << " at " << x
+                << " left the mesh through "
+                << (patchi >= 0 ? mesh_.boundaryMesh()[patchi].name() : word("an unknown patch"))
+                << ", which is not an outlet; removed and counted as lost"
+                << endl;
+        }
+        world_.check
+        (
+            dem_world_remove_particle
+            (
+                world_, size_t(leaving[k]), o >= 0 ? outletIds_[o] : -1
+            ),
+            "dem_world_remove_particle"
+        );
+    }
+    if (nOut + nLost > 0)
+    {
+        Info<< "demCoupling: " << nOut << " particles left through outlets, "
+            << nLost << " lost" << endl;
+    }
+
+    a = world_.arrays();
+    host_.setSize(label(a.n_owned));
+    forAll(host_, i)
+    {
+        host_[i] = hostById_[a.id[i]];
+    }
+}
+
+
+void Foam::demCoupling::computeWeights()
+{
+    dem_arrays a = world_.arrays();
+    const label n = label(a.n_owned);
+    wStart_.setSize(n + 1);
+    wCells_.clear();
+    wValues_.clear();
+    for (label i = 0; i < n; ++i)
+    {
+        wStart_[i] = wCells_.size();
+        voidage_->addWeights
+        (
+            toVec(a.x, i), a.radius[i], host_[i], wCells_, wValues_
+        );
+    }
+    wStart_[n] = wCells_.size();
+}
+
+
+void Foam::demCoupling::computeVoidage()
+{
+    dem_arrays a = world_.arrays();
+    const label n = label(a.n_owned);
+    const scalarField& V = mesh_.V();
+
+    scalarField solid(mesh_.nCells(), 0);
+    vectorField mom(mesh_.nCells(), Zero);
+    solidVolumeParticles_ = 0;
+    for (label i = 0; i < n; ++i)
+    {
+        const scalar Vp = 4.0/3.0*pi*pow3(a.radius[i]);
+        solidVolumeParticles_ += Vp;
+        const vector v(toVec(a.v, i));
+        for (label k = wStart_[i]; k < wStart_[i+1]; ++k)
+        {
+            solid[wCells_[k]] += wValues_[k]*Vp;
+            mom[wCells_[k]] += wValues_[k]*Vp*v;
+        }
+    }
+    solidVolumeMesh_ = sum(solid);
+
+    epsRaw_.primitiveFieldRef() = 1.0 - solid/V;
+    eps_.primitiveFieldRef() = max(epsRaw_.primitiveField(), epsMin_);
+    eps_.correctBoundaryConditions();
+
+    forAll(mom, c)
+    {
+        Up_[c] = solid[c] > 0 ? mom[c]/solid[c] : vector::zero;
+    }
+    Up_.correctBoundaryConditions();
+
+    if (formulation_->pressureTimesVoidage())
+    {
+        pCoeff_ = eps_;
+    }
+    else
+    {
+        pCoeff_ = dimensionedScalar("one", dimless, 1.0);
+    }
+}
+
+
+void Foam::demCoupling::evolve
+(
+    const volVectorField& U,
+    const volScalarField& p,
+    const volVectorField& divTauKin,
+    const volScalarField& nu
+)
+{
+    const scalar dt = mesh_.time().deltaTValue();
+    const label nDem = label(dt/demDt_ + 0.5);
+    if (nDem < 1 || mag(nDem*demDt_ - dt) > 1e-6*dt)
+    {
+        FatalErrorInFunction
+            << "The fluid time step " << dt << " s is not a whole multiple "
+            << "of the DEM time step dem/timeStep " << demDt_ << " s in "
+            << dict_.name() << "; choose deltaT = N x timeStep"
+            << exit(FatalError);
+    }
+    nSubCycles_ = nDem;
+
+    // 1-2: positions at the start of the step (located by the last call)
+    dem_arrays a = world_.arrays();
+    const label n = label(a.n_owned);
+    nLastCoupled_ = n;
+
+    const volVectorField gradPKin(fvc::grad(p));
+    const vectorField& Uc = U.primitiveField();
+    const vectorField& gradPc = gradPKin.primitiveField();
+    const vectorField& divTc = divTauKin.primitiveField();
+    const scalarField& epsc = eps_.primitiveField();
+    const scalarField& nuc = nu.primitiveField();
+    const scalarField& V = mesh_.V();
+    const couplingFormulation& form = formulation_();
+
+    fDrag_.setSize(n);
+    fGradP_.setSize(n);
+    uFluid_.setSize(n);
+    etaP_.setSize(n);
+    epsP_.setSize(n);
+    List<vector> fExch(n);
+    List<vector> fPart(n);
+    List<vector> divTauP(n);
+    scalarField muP(n);
+    scalarField dragFac(n);
+
+    // cell-mean particle velocity (for the cell-mean drag variant)
+    vectorField vsCell;
+    if (cellMeanDrag_)
+    {
+        vsCell = Up_.primitiveField();
+    }
+
+    for (label i = 0; i < n; ++i)
+    {
+        const scalar Vp = 4.0/3.0*pi*pow3(a.radius[i]);
+        uFluid_[i] = interp(i, Uc);
+        const vector gp = rhof_*interp(i, gradPc);
+        const vector dtau = rhof_*interp(i, divTc);
+        epsP_[i] = interp(i, epsc);
+        muP[i] = rhof_*interp(i, nuc);
+        dragFac[i] = form.dragFactor(epsP_[i]);
+        fGradP_[i] = -Vp*gp;
+        divTauP[i] = Vp*dtau;
+        form.explicitForces(Vp, gp, dtau, rhof_, g_, fPart[i], fExch[i]);
+        setVec(a.force_ext, i, fPart[i]);
+        setVec(a.torque_ext, i, vector::zero);
+        setVec(a.drag_impulse, i, vector::zero);
+    }
+
+    // 3: DEM sub-steps with drag re-evaluated every chunk
+    const label chunk =
+        dragUpdateInterval_ > 0 ? min(dragUpdateInterval_, nDem) : nDem;
+    scalarField Ksum(n, 0);   // time-weighted particle drag coefficient
+
+    label done = 0;
+    while (done < nDem)
+    {
+        const label m = min(chunk, nDem - done);
+        a = world_.arrays();
+        const label nNow = min(n, label(a.n_owned));
+        for (label i = 0; i < nNow; ++i)
+        {
+            const vector v(toVec(a.v, i));
+            vector slip = uFluid_[i] - v;
+            vector uf = uFluid_[i];
+            if (cellMeanDrag_)
+            {
+                const vector vs = interp(i, vsCell);
+                slip = uFluid_[i] - vs;
+                uf = uFluid_[i] - vs + v;
+            }
+            const scalar K =
+                drag_->K(2*a.radius[i], epsP_[i], mag(slip), rhof_, muP[i])
+               *dragFac[i];
+            a.drag_coeff[i] = K;
+            setVec(a.fluid_velocity, i, uf);
+            Ksum[i] += K*m/nDem;
+            if (frozen_)
+            {
+                // fixed bed: no DEM motion; the exchange is the drag at v
+                const vector imp = toVec(a.drag_impulse, i) + K*(uf - v)*m*demDt_;
+                setVec(a.drag_impulse, i, imp);
+            }
+        }
+        for (label i = nNow; i < label(a.n_owned); ++i)
+        {
+            // particles inserted during this step: no drag until located
+            a.drag_coeff[i] = 0;
+            setVec(a.fluid_velocity, i, vector::zero);
+        }
+        if (!frozen_)
+        {
+            world_.check(dem_world_step(world_, m), "dem_world_step");
+        }
+        done += m;
+    }
+
+    // 4: exchange, eta, balance (start-of-step weights)
+    a = world_.arrays();
+    if (label(a.n_owned) < n)
+    {
+        FatalErrorInFunction
+            << "particles were removed inside dem_world_step; demFoam books "
+            << "outlets itself and expects none" << exit(FatalError);
+    }
+
+    vectorField Fc(mesh_.nCells(), Zero);
+    scalarField Kcell(mesh_.nCells(), 0);
+    vector sumParticle(Zero);
+    scalar sumMagParticle = 0;
+    scalar etaSum = 0;
+    scalarField etaCell(mesh_.nCells(), 0);
+    scalarField wCell(mesh_.nCells(), 0);
+
+    for (label i = 0; i < n; ++i)
+    {
+        const scalar Vp = 4.0/3.0*pi*pow3(a.radius[i]);
+        const vector dragRate = toVec(a.drag_impulse, i)/dt;
+        const vector fpf = dragRate + fPart[i];
+        sumParticle += fpf;
+        sumMagParticle += mag(fpf);
+        const vector exch = dragRate + fExch[i];
+
+        // [Z]'s f_d of this particle (the drag before the set's factor)
+        const vector fd = dragRate/dragFac[i];
+        fDrag_[i] = dragRate;
+
+        // applicability index [Z 2.25-2.27], physics.md section 5
+        const scalar e = epsP_[i];
+        const vector fResid =
+            fGradP_[i] - fd*(1 - e)/e + divTauP[i] + rhof_*Vp*g_;
+        const vector fTotal = fd/e - rhof_*Vp*g_ + fResid;
+        etaP_[i] = 100*mag(fResid)/max(mag(fTotal), VSMALL);
+        etaSum += etaP_[i];
+
+        for (label k = wStart_[i]; k < wStart_[i+1]; ++k)
+        {
+            const label c = wCells_[k];
+            const scalar w = wValues_[k];
+            Fc[c] += w*exch;
+            Kcell[c] += w*Ksum[i];
+            etaCell[c] += w*etaP_[i];
+            wCell[c] += w;
+        }
+    }
+    bedEta_ = n ? etaSum/n : 0;
+
+    // fluid momentum source S = -F + (1 - c)(grad p - div tau); c from the
+    // solid fraction of the same weights (exact, unclipped)
+    const bool setII = form.pressureTimesVoidage();
+    vector sumFluid(Zero);
+    forAll(Fc, c)
+    {
+        F_[c] = Fc[c]/V[c];
+        Kc_[c] = Kcell[c]/V[c];
+        vector S = -F_[c];
+        if (setII)
+        {
+            S += (1 - epsRaw_[c])*rhof_*(gradPc[c] - divTc[c]);
+        }
+        source_[c] = S;
+        sumFluid += S*V[c];
+        eta_[c] = wCell[c] > 0 ? etaCell[c]/wCell[c] : 0;
+    }
+    balanceFluidVec_ = sumFluid;
+    balanceParticleVec_ = sumParticle;
+    balanceFluid_ = mag(sumFluid + sumParticle);
+    balanceParticle_ = max(sumMagParticle, VSMALL);
+    Ucoup_.primitiveFieldRef() = Uc;
+
+    // 5: new positions -> voidage for the fluid step
+    locateAll();
+    computeWeights();
+    computeVoidage();
+
+    report(false);
+}
+
+
+Foam::tmp<Foam::fvVectorMatrix>
+Foam::demCoupling::SU(volVectorField& U) const
+{
+    const volScalarField::Internal Kkin(Kc_()/rhof_);
+    tmp<fvVectorMatrix> tEqn
+    (
+        new fvVectorMatrix(U, dimVolume*dimVelocity/dimTime)
+    );
+    fvVectorMatrix& eqn = tEqn.ref();
+    eqn.diag() -= Kkin.field()*mesh_.V();
+    eqn.source() -=
+        (Kkin.field()*Ucoup_.primitiveField() - F_.primitiveField()/rhof_)
+       *mesh_.V();
+    return tEqn;
+}

@@ -1,0 +1,131 @@
+#include "demCoupling.H"
+#include "passiveParticleCloud.H"
+#include "IOField.H"
+#include "OSspecific.H"
+#include "mathematicalConstants.H"
+
+void Foam::demCoupling::report(const bool full) const
+{
+    const scalar rel = balanceFluid_/balanceParticle_;
+    Info<< "demCoupling: particles " << label(dem_world_count(world_))
+        << ", DEM steps " << nSubCycles_
+        << ", momentum balance: fluid " << balanceFluidVec_
+        << " particles " << balanceParticleVec_
+        << " relErr " << rel << endl;
+
+    if (!full) return;
+
+    Info<< "demCoupling: solid volume: mesh " << solidVolumeMesh_
+        << " particles " << solidVolumeParticles_
+        << " relDiff "
+        << mag(solidVolumeMesh_ - solidVolumeParticles_)
+          /max(solidVolumeParticles_, VSMALL) << nl
+        << "demCoupling: bed-average eta " << bedEta_ << " %" << endl;
+
+    if
+    (
+        formulation_->type() == "setIII"
+     && bedEta_ > etaWarning_
+    )
+    {
+        WarningInFunction
+            << "set III with bed-average eta " << bedEta_
+            << " % above etaWarning " << etaWarning_ << " %: set III assumes "
+            << "negligible fluid acceleration ([Z] 2.10); use setI or setII"
+            << endl;
+    }
+
+    forAll(outletPatches_, k)
+    {
+        int64_t cnt = 0;
+        double mass = 0;
+        world_.check
+        (
+            dem_world_outlet_totals(world_, outletIds_[k], &cnt, &mass),
+            "dem_world_outlet_totals"
+        );
+        Info<< "demCoupling: outlet "
+            << mesh_.boundaryMesh()[outletPatches_[k]].name() << ": "
+            << label(cnt) << " particles, " << mass << " kg" << endl;
+    }
+    label lost = lostUnknown_;
+    forAll(lostPerPatch_, patchi)
+    {
+        if (lostPerPatch_[patchi])
+        {
+            Info<< "demCoupling: lost through "
+                << mesh_.boundaryMesh()[patchi].name() << ": "
+                << lostPerPatch_[patchi] << endl;
+            lost += lostPerPatch_[patchi];
+        }
+    }
+    Info<< "demCoupling: lost particles in total " << lost
+        << " (global searches " << locator_.nGlobal() << ")" << endl;
+}
+
+
+void Foam::demCoupling::write() const
+{
+    report(true);
+
+    const dem_arrays a = world_.arrays();
+    const label n = label(a.n_owned);
+    const word cloudName("demCloud");
+
+    passiveParticleCloud cloud(mesh_, cloudName, IDLList<passiveParticle>());
+    for (label i = 0; i < n; ++i)
+    {
+        const vector x(a.x[3*i], a.x[3*i+1], a.x[3*i+2]);
+        cloud.addParticle(new passiveParticle(mesh_, x, host_[i]));
+    }
+
+    List<int> coord(n, 0);
+    if (n)
+    {
+        world_.check
+        (
+            dem_world_particle_contacts(world_, coord.data(), nullptr),
+            "dem_world_particle_contacts"
+        );
+    }
+
+    IOField<scalar> d(cloud.fieldIOobject("d", IOobject::NO_READ), n);
+    IOField<scalar> rho(cloud.fieldIOobject("rho", IOobject::NO_READ), n);
+    IOField<vector> U(cloud.fieldIOobject("U", IOobject::NO_READ), n);
+    IOField<vector> omega(cloud.fieldIOobject("omega", IOobject::NO_READ), n);
+    IOField<vector> Fdrag(cloud.fieldIOobject("Fdrag", IOobject::NO_READ), n);
+    IOField<vector> FgradP(cloud.fieldIOobject("FgradP", IOobject::NO_READ), n);
+    IOField<scalar> eta(cloud.fieldIOobject("eta", IOobject::NO_READ), n);
+    IOField<label> coordination
+    (
+        cloud.fieldIOobject("coordination", IOobject::NO_READ), n
+    );
+    IOField<label> id(cloud.fieldIOobject("id", IOobject::NO_READ), n);
+
+    for (label i = 0; i < n; ++i)
+    {
+        d[i] = 2*a.radius[i];
+        rho[i] = a.density[i];
+        U[i] = vector(a.v[3*i], a.v[3*i+1], a.v[3*i+2]);
+        omega[i] = vector(a.omega[3*i], a.omega[3*i+1], a.omega[3*i+2]);
+        const bool known = i < nLastCoupled_ && i < fDrag_.size();
+        Fdrag[i] = known ? fDrag_[i] : vector::zero;
+        FgradP[i] = known ? fGradP_[i] : vector::zero;
+        eta[i] = known ? etaP_[i] : 0;
+        coordination[i] = coord[i];
+        id[i] = label(a.id[i]);
+    }
+
+    cloud.write();
+    if (n)
+    {
+        d.write(); rho.write(); U.write(); omega.write(); Fdrag.write();
+        FgradP.write(); eta.write(); coordination.write(); id.write();
+    }
+
+    // DEM state for restarts
+    const fileName dir(mesh_.time().timePath()/"uniform");
+    mkDir(dir);
+    const fileName state(dir/"demState.bin");
+    world_.check(dem_world_save(world_, state.c_str()), "dem_world_save");
+}

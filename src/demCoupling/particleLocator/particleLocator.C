@@ -1,0 +1,114 @@
+#include "particleLocator.H"
+
+Foam::particleLocator::particleLocator(const polyMesh& mesh, const label maxWalk)
+:
+    mesh_(mesh),
+    maxWalk_(maxWalk),
+    nWalk_(0),
+    nGlobal_(0)
+{}
+
+
+Foam::label Foam::particleLocator::exitFace
+(
+    const point& p,
+    const label celli,
+    scalar& dist
+) const
+{
+    const cell& c = mesh_.cells()[celli];
+    const vectorField& Sf = mesh_.faceAreas();
+    const vectorField& Cf = mesh_.faceCentres();
+    const labelList& own = mesh_.faceOwner();
+
+    label best = -1;
+    dist = 0;
+    forAll(c, i)
+    {
+        const label facei = c[i];
+        const scalar magS = mag(Sf[facei]);
+        scalar d = ((p - Cf[facei]) & Sf[facei])/magS;
+        if (own[facei] != celli)
+        {
+            d = -d;
+        }
+        // tolerance: 1e-12 of the face size
+        if (d > dist + 1e-12*sqrt(magS))
+        {
+            dist = d;
+            best = facei;
+        }
+    }
+    return best;
+}
+
+
+Foam::label Foam::particleLocator::locate
+(
+    const point& p,
+    const label seed,
+    label& exitFacei,
+    const bool global
+) const
+{
+    exitFacei = -1;
+    label celli = seed;
+    if (celli >= 0 && celli < mesh_.nCells())
+    {
+        ++nWalk_;
+        for (label step = 0; step < maxWalk_; ++step)
+        {
+            scalar dist;
+            const label facei = exitFace(p, celli, dist);
+            if (facei < 0)
+            {
+                return celli;
+            }
+            if (mesh_.isInternalFace(facei))
+            {
+                const label own = mesh_.faceOwner()[facei];
+                celli = (own == celli ? mesh_.faceNeighbour()[facei] : own);
+            }
+            else
+            {
+                exitFacei = facei;
+                break;
+            }
+        }
+    }
+
+    if (!global && seed >= 0)
+    {
+        return -1;
+    }
+
+    ++nGlobal_;
+    const label found = mesh_.findCell(p);
+    if (found >= 0)
+    {
+        exitFacei = -1;
+        return found;
+    }
+
+    if (exitFacei < 0 && celli >= 0 && celli < mesh_.nCells())
+    {
+        // the boundary face of the last cell that p lies furthest beyond
+        const cell& c = mesh_.cells()[celli];
+        scalar best = -GREAT;
+        forAll(c, i)
+        {
+            const label facei = c[i];
+            if (!mesh_.isInternalFace(facei))
+            {
+                const vector n = mesh_.faceAreas()[facei]/mag(mesh_.faceAreas()[facei]);
+                const scalar d = (p - mesh_.faceCentres()[facei]) & n;
+                if (d > best)
+                {
+                    best = d;
+                    exitFacei = facei;
+                }
+            }
+        }
+    }
+    return -1;
+}

@@ -1,0 +1,93 @@
+#include "dividedVoidage.H"
+#include "addToRunTimeSelectionTable.H"
+
+namespace Foam
+{
+namespace voidageModels
+{
+    defineTypeNameAndDebug(divided, 0);
+    addToRunTimeSelectionTable(voidageModel, divided, dictionary);
+}
+}
+
+Foam::voidageModels::divided::divided
+(
+    const dictionary& dict, const fvMesh& mesh, const particleLocator& l
+)
+:
+    voidageModel(typeName, dict, mesh, l)
+{
+    const label n = coeffs_.getOrDefault<label>("nLattice", 6);
+    if (n < 2 || n > 12)
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "dividedCoeffs/nLattice " << n << " in " << coeffs_.name()
+            << ": allowed 2..12" << exit(FatalIOError);
+    }
+    DynamicList<vector> pts;
+    const scalar h = 2.0/n;
+    for (label i = 0; i < n; ++i)
+    {
+        for (label j = 0; j < n; ++j)
+        {
+            for (label k = 0; k < n; ++k)
+            {
+                const vector s(-1 + (i + 0.5)*h, -1 + (j + 0.5)*h, -1 + (k + 0.5)*h);
+                if (magSqr(s) <= 1.0)
+                {
+                    pts.append(s);
+                }
+            }
+        }
+    }
+    samples_.transfer(pts);
+}
+
+
+void Foam::voidageModels::divided::addWeights
+(
+    const point& x, const scalar r, const label hostCell,
+    DynamicList<label>& cells, DynamicList<scalar>& weights
+) const
+{
+    const label start = cells.size();
+    const scalar w = 1.0/samples_.size();
+    label prev = hostCell;
+    forAll(samples_, s)
+    {
+        label c = locator_.locate(x + r*samples_[s], prev, false);
+        if (c < 0)
+        {
+            c = hostCell;
+        }
+        else
+        {
+            prev = c;
+        }
+        bool found = false;
+        for (label k = start; k < cells.size(); ++k)
+        {
+            if (cells[k] == c)
+            {
+                weights[k] += w;
+                found = true;
+                break;
+            }
+        }
+        if (!found)
+        {
+            cells.append(c);
+            weights.append(w);
+        }
+    }
+    // make the sum exactly 1 (round-off of repeated additions)
+    scalar sum = 0;
+    for (label k = start; k < cells.size(); ++k)
+    {
+        sum += weights[k];
+    }
+    for (label k = start; k < cells.size(); ++k)
+    {
+        weights[k] /= sum;
+    }
+}
