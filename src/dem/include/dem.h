@@ -90,6 +90,8 @@ typedef struct {
     double max_dt_fraction;  /* dt must be <= this x the smallest contact time; default 0.2 */
     double max_overlap_ratio;/* stop with DEM_ERR_OVERLAP above this overlap/diameter; default 0.1 */
     uint64_t seed;           /* random seed for insertion */
+    int    spatial_sort;     /* added: 1 (default) re-sorts owned particles by cell at each
+                                neighbour-list build (storage order changes; use id) */
 } dem_config;
 
 /** Fill c with defaults: Hertz-Mindlin, dt 1e-6, gravity (0,0,-9.81), unit box, non-periodic. */
@@ -153,6 +155,10 @@ dem_status dem_world_arrays(dem_world *w, dem_arrays *a);
 size_t     dem_world_count(const dem_world *w);     /* owned particles */
 double     dem_world_time(const dem_world *w);
 int64_t    dem_world_step_count(const dem_world *w);
+/** Added: incremented whenever the storage order of particles changes (spatial
+ *  sort during dem_world_step, insertion, removal); cache index-keyed data
+ *  only while it is unchanged. */
+int64_t    dem_world_reorder_count(const dem_world *w);
 
 /** Advance nsteps time steps (velocity Verlet; drag semi-implicit). */
 dem_status dem_world_step(dem_world *w, int64_t nsteps);

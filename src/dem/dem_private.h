@@ -1,0 +1,215 @@
+/*---------------------------------------------------------------------------*\
+  demFoam DEM core - private definitions shared by the source files of
+  src/dem.  Not installed; the OpenFOAM side only sees include/dem.h.
+\*---------------------------------------------------------------------------*/
+#ifndef DEM_PRIVATE_H
+#define DEM_PRIVATE_H
+
+#include "dem.h"
+#include <stdint.h>
+#include <stddef.h>
+
+#define DEM_PI 3.14159265358979323846
+
+/*--- error helpers ---------------------------------------------------------*/
+dem_status dem_fail_(const dem_world *w, dem_status code, const char *file, int line,
+                     const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+#define DEM_FAIL(w, code, ...) dem_fail_((w), (code), __FILE__, __LINE__, __VA_ARGS__)
+void dem_log_(const dem_world *w, dem_log_level lvl, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/*--- materials -------------------------------------------------------------*/
+/* Parameters of one material pair, computed once (dem_pairs_update) so that
+ * the pair loop does one table look-up and no law dispatch.              */
+typedef struct {
+    /* Hertz-Mindlin [Z] Table 2 */
+    double estar;        /* E* */
+    double cn, ct;       /* dimensionless damping */
+    double mindlin;      /* (2 - nu) / (2 (1 - nu)): delta_t,max = mu * mindlin * delta_n */
+    /* spring-dashpot [S] */
+    double kn, kt;
+    double eta_fixed;    /* >= 0: normal damping [N s/m] used as given */
+    double beta;         /* eta_fixed < 0: eta_n = beta sqrt(k_n m_eff) (restitution given) */
+    /* common */
+    double mu, mu_r, e;
+    double nu;
+} dem_pair;
+
+typedef struct {
+    double x0[3];        /* point at t = t0 */
+    double n[3];         /* unit normal */
+    double vel[3];
+    double t0;           /* time of x0 */
+    int material, wall;
+} dem_plane;
+
+typedef struct {
+    size_t nv, ntri;
+    double *v0;          /* vertices at time t0 */
+    int *tri;            /* 3 per triangle */
+    double *nrm;         /* unit normal per triangle */
+    double vel[3];
+    double t0;
+    int material, wall;
+} dem_mesh;
+
+typedef struct {
+    size_t nv;
+    double *poly;        /* 3*nv */
+    double n[3];         /* unit normal */
+    double area;
+    dem_rate_kind kind;
+    double rate, t_start, t_end;
+    dem_particle_template t;
+    double tw_d[64], tw_rho[64]; /* copies of discrete tables (values, weights) */
+    size_t nd_d, nd_rho;
+    double due;          /* particles (number) or kg (mass) owed */
+    double next_d, next_rho; int have_next;
+    int64_t inserted;
+} dem_inlet;
+
+typedef struct {
+    int kind;            /* 0 plane, 1 box, 2 none */
+    double a[3], b[3];   /* plane: point, normal; box: lo, hi */
+    int64_t count;
+    double mass;
+} dem_outlet;
+
+/* A contact carried across a list rebuild: rows are new indices, h is
+ * oriented for (row a, partner b). */
+typedef struct { int a, b; double h[3]; } dem_carry;
+/* Contact history waiting for its particles by id (unpack). */
+typedef struct { int64_t ia, ib; double h[3]; } dem_pending;
+typedef struct { int64_t id; int wall, tri; double h[3]; } dem_wpending;
+
+struct dem_world {
+    char err[640];
+    dem_log_fn log; void *log_user;
+    dem_config cfg;
+
+    /* materials */
+    int nmat, capmat;
+    dem_material *mat;       /* as given by the user */
+    dem_pair *pair;          /* nmat*nmat, valid when !pairs_dirty */
+    int pairs_dirty;
+
+    /* particles (SoA); capacity cap, n owned + ng ghosts */
+    size_t n, ng, cap;
+    int64_t *id;
+    double *x, *v, *w;       /* 3 per particle */
+    double *f, *t;           /* contact force and torque of the last evaluation */
+    double *rad, *mass, *rho;
+    int *mat_of;
+    float *x0;               /* positions at the last list build */
+    int *list_index;         /* row of the particle in the current list (-1: none) */
+    /* coupling arrays, allocated on first dem_world_arrays() call */
+    int have_ext;
+    double *fext, *text, *K, *uf, *J;
+    int64_t next_id;
+
+    /* neighbour grid */
+    int nc[3]; double cs[3]; double cutoff, skin, amax;
+    size_t ncells, capcells;
+    int *cell_start;         /* ncells + 1 */
+    int *cell_item;          /* particle per slot */
+    int *cell_of;            /* per particle */
+    int *perm; int *old2new;
+    double *tmp;             /* 3 * cap doubles */
+
+    /* half Verlet list in CSR form, history beside the entries */
+    int list_valid;          /* 0: rebuild before the next force evaluation */
+    size_t nrows;            /* rows of the current list */
+    size_t caprows;
+    int *nb_off;             /* nrows + 1 */
+    size_t nnb, capnb;
+    int *nb_j;
+    unsigned char *nb_s;     /* periodic image code 0..26 */
+    double *nb_h;            /* 3 per entry: tangential history */
+    double shift[27][3];
+    /* wall candidate list: CSR by particle row */
+    int *wc_off; size_t nwc, capwc;
+    int *wc_wall;            /* wall id */
+    int *wc_tri;             /* triangle (mesh) or -1 (plane) */
+    double *wc_h;            /* 3 per entry */
+    double t_build;
+    int64_t nbuilds;
+
+    /* carry buffers (reused) */
+    dem_carry *carry; size_t ncarry, capcarry;
+    int *carry_off; size_t capcarry_off;
+    dem_pending *pend; size_t npend, cappend;
+    dem_wpending *wpend; size_t nwpend, capwpend;
+
+    /* walls: ids 0..nplanes+nmeshes-1 in creation order */
+    int nwalls;
+    int *wall_kind;          /* 0 plane, 1 mesh */
+    int *wall_index;
+    dem_plane *planes; int nplanes;
+    dem_mesh *meshes; int nmeshes;
+    /* triangle bins: global triangle list over meshes */
+    size_t ntri_all;
+    int *tri_mesh, *tri_local;
+    int *tcell_start; int *tcell_item; size_t ntcell_item, captcell_item;
+
+    /* time */
+    double time;
+    int64_t step;
+
+    /* rng: xoshiro256** */
+    uint64_t rng[4];
+
+    /* inlets / outlets / records */
+    dem_inlet *inlets; int ninlets;
+    dem_outlet *outlets; int noutlets;
+    dem_removed_record *rec; size_t nrec, caprec;
+    int64_t inserted, removed;
+    int64_t reorders;
+
+    /* last force evaluation */
+    double max_overlap;
+    size_t pair_contacts, wall_contacts;
+    int forces_valid;
+    double hdt;              /* history increment of the current force evaluation */
+};
+
+/*--- internal functions ----------------------------------------------------*/
+dem_status dem_reserve(dem_world *w, size_t cap);
+dem_status dem_pairs_update(dem_world *w);
+dem_status dem_ext_alloc(dem_world *w);
+dem_status dem_list_build(dem_world *w);
+void       dem_forces(dem_world *w, double hist_dt);
+dem_status dem_append_particle(dem_world *w, const dem_particle *p);
+void       dem_remove_index(dem_world *w, size_t i);
+dem_status dem_inlets_run(dem_world *w);
+dem_status dem_outlets_run(dem_world *w);
+void       dem_wall_position(const dem_world *w, int wall, double time, double off[3]);
+int        dem_closest_on_triangle(const double *p, const double *a, const double *b,
+                                   const double *c, double q[3]);
+dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayleigh, double *tc);
+double     dem_hertz_time(double meff, double rstar, double estar, double v);
+dem_status dem_remove_booked(dem_world *w, size_t i, int outlet);
+
+/* restitution <-> damping mappings (restitution.c) */
+double dem_hm_restitution(double cn);          /* e(c_n), Hertz-Mindlin of [Z] */
+double dem_hm_damping(double e);               /* inverse */
+double dem_lsd_beta(double e);                 /* eta = beta sqrt(k m) */
+
+/* rng */
+uint64_t dem_rng_next(dem_world *w);
+double   dem_rng_uniform(dem_world *w);        /* [0,1) */
+void     dem_rng_seed(dem_world *w, uint64_t seed);
+double   dem_dist_draw(dem_world *w, const dem_distribution *d);
+
+static inline double dem_dot(const double *a, const double *b)
+{ return a[0]*b[0] + a[1]*b[1] + a[2]*b[2]; }
+static inline void dem_cross(const double *a, const double *b, double *c)
+{ c[0] = a[1]*b[2] - a[2]*b[1]; c[1] = a[2]*b[0] - a[0]*b[2]; c[2] = a[0]*b[1] - a[1]*b[0]; }
+
+#endif

@@ -1,0 +1,147 @@
+/*---------------------------------------------------------------------------*\
+  demFoam DEM core - time integration.
+
+  Velocity Verlet (kick dt/2, drift dt, forces, kick dt/2) for translation
+  and rotation of spheres (I = 2/5 m a^2).  The contact force/torque of the
+  last evaluation is stored; gravity, force_ext/torque_ext and the drag are
+  added at each kick, so the caller may change them between calls.
+  Drag K (u - v) is integrated implicitly in each half kick h = dt/2:
+      m (v' - v) / h = F + K (u - v')  =>  v' = (v + h (F/m + K u/m)) / (1 + h K/m)
+  and drag_impulse += K (u - v') h, which is exactly the momentum the drag
+  gave the particle (the fluid gets minus that).  The end kick of one step
+  and the start kick of the next are done in the same pass.
+\*---------------------------------------------------------------------------*/
+#include "dem_private.h"
+#include <math.h>
+#include <string.h>
+
+static dem_status check_state(dem_world *w, double *vmax)
+{
+    size_t np = w->n;
+    double v2max = 0;
+    for (size_t i = 0; i < np; ++i) {
+        const double *x = w->x + 3 * i, *v = w->v + 3 * i, *om = w->w + 3 * i;
+        double s = x[0] + x[1] + x[2] + v[0] + v[1] + v[2] + om[0] + om[1] + om[2];
+        if (w->have_ext)
+            s += w->fext[3 * i] + w->fext[3 * i + 1] + w->fext[3 * i + 2] + w->text[3 * i] +
+                 w->text[3 * i + 1] + w->text[3 * i + 2] + w->K[i] + w->uf[3 * i] +
+                 w->uf[3 * i + 1] + w->uf[3 * i + 2];
+        if (!isfinite(s)) {
+            const char *what = "position";
+            for (int k = 0; k < 3; ++k) {
+                if (!isfinite(v[k])) what = "velocity";
+                if (!isfinite(om[k])) what = "angular velocity";
+            }
+            for (int k = 0; k < 3; ++k) if (!isfinite(x[k])) what = "position";
+            if (w->have_ext && !strcmp(what, "position") && isfinite(x[0] + x[1] + x[2]))
+                what = "force_ext/torque_ext/drag_coeff/fluid_velocity";
+            return DEM_FAIL(w, DEM_ERR_NAN, "particle index %zu id %lld: non-finite %s (step %lld, t = %g)",
+                            i, (long long)w->id[i], what, (long long)w->step, w->time);
+        }
+        if (w->have_ext && w->K[i] < 0)
+            return DEM_FAIL(w, DEM_ERR_RANGE, "particle index %zu id %lld: drag_coeff = %g; allowed >= 0",
+                            i, (long long)w->id[i], w->K[i]);
+        double v2 = dem_dot(v, v);
+        if (v2 > v2max) v2max = v2;
+    }
+    *vmax = sqrt(v2max);
+    return DEM_OK;
+}
+
+static double max_wall_speed(const dem_world *w)
+{
+    double m = 0;
+    for (int k = 0; k < w->nplanes; ++k) m = fmax(m, sqrt(dem_dot(w->planes[k].vel, w->planes[k].vel)));
+    for (int k = 0; k < w->nmeshes; ++k) m = fmax(m, sqrt(dem_dot(w->meshes[k].vel, w->meshes[k].vel)));
+    return m;
+}
+
+static inline void kick1(dem_world *w, size_t i, double h, const double *g)
+{
+    double *v = w->v + 3 * i, *om = w->w + 3 * i;
+    const double *f = w->f + 3 * i, *t = w->t + 3 * i;
+    const double m = w->mass[i], im = 1.0 / m;
+    const double iI = 2.5 * im / (w->rad[i] * w->rad[i]);
+    if (!w->have_ext) {
+        for (int k = 0; k < 3; ++k) {
+            v[k] += h * (f[k] * im + g[k]);
+            om[k] += h * t[k] * iI;
+        }
+        return;
+    }
+    const double *fe = w->fext + 3 * i, *te = w->text + 3 * i, *u = w->uf + 3 * i;
+    const double K = w->K[i];
+    if (K > 0) {
+        const double den = 1.0 / (1.0 + h * K * im);
+        double *J = w->J + 3 * i;
+        for (int k = 0; k < 3; ++k) {
+            double vn = (v[k] + h * ((f[k] + fe[k] + K * u[k]) * im + g[k])) * den;
+            J[k] += K * (u[k] - vn) * h;
+            v[k] = vn;
+        }
+    } else {
+        for (int k = 0; k < 3; ++k) v[k] += h * ((f[k] + fe[k]) * im + g[k]);
+    }
+    for (int k = 0; k < 3; ++k) om[k] += h * (t[k] + te[k]) * iI;
+}
+
+dem_status dem_world_step(dem_world *w, int64_t nsteps)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (nsteps < 0) return DEM_FAIL(w, DEM_ERR_RANGE, "nsteps = %lld; allowed >= 0", (long long)nsteps);
+    if (nsteps == 0) return DEM_OK;
+    dem_status st = dem_pairs_update(w);
+    if (st) return st;
+    double vmax = 0;
+    if ((st = check_state(w, &vmax))) return st;
+    double vw = max_wall_speed(w);
+    if (w->n) {
+        double tc;
+        double vimp = 2.0 * vmax + vw;
+        dem_contact_time_internal(w, vimp, 1, &tc);
+        if (w->cfg.dt > w->cfg.max_dt_fraction * tc)
+            return DEM_FAIL(w, DEM_ERR_TIMESTEP, "dt = %g exceeds max_dt_fraction %g x smallest contact "
+                            "time %g s (impact speed %g m/s) = %g s", w->cfg.dt, w->cfg.max_dt_fraction,
+                            tc, vimp, w->cfg.max_dt_fraction * tc);
+    }
+    const double dt = w->cfg.dt, h = 0.5 * dt;
+    const double *g = w->cfg.gravity;
+    if (!w->list_valid && (st = dem_list_build(w))) return st;
+    if (!w->forces_valid) dem_forces(w, 0.0); /* first evaluation: no history increment */
+    const int has_io = w->ninlets > 0 || w->noutlets > 0;
+    dem_status result = DEM_OK;
+    for (int64_t s = 0; s < nsteps; ++s) {
+        double d2max = 0;
+        const size_t n = w->n;
+        for (size_t i = 0; i < n; ++i) {
+            if (s > 0) kick1(w, i, h, g);
+            kick1(w, i, h, g);
+            double *x = w->x + 3 * i;
+            const double *v = w->v + 3 * i;
+            const float *x0 = w->x0 + 3 * i;
+            x[0] += dt * v[0]; x[1] += dt * v[1]; x[2] += dt * v[2];
+            double e0 = x[0] - x0[0], e1 = x[1] - x0[1], e2 = x[2] - x0[2];
+            double d2 = e0 * e0 + e1 * e1 + e2 * e2;
+            if (d2 > d2max) d2max = d2;
+        }
+        w->step++;
+        w->time += dt;
+        if (has_io) {
+            if ((st = dem_outlets_run(w))) { result = st; break; }
+            if ((st = dem_inlets_run(w))) { result = st; break; }
+        }
+        double dmax = sqrt(d2max), dwall = vw * (w->time - w->t_build);
+        if (!w->list_valid || 2.0 * dmax > w->skin || dmax + dwall > w->skin) {
+            if ((st = dem_list_build(w))) { result = st; break; }
+        }
+        dem_forces(w, dt);
+        if (w->max_overlap > w->cfg.max_overlap_ratio) {
+            result = DEM_FAIL(w, DEM_ERR_OVERLAP, "overlap / diameter = %g exceeds max_overlap_ratio %g "
+                              "at step %lld (t = %g)", w->max_overlap, w->cfg.max_overlap_ratio,
+                              (long long)w->step, w->time);
+            s = nsteps; /* finish with the end kick */
+        }
+    }
+    for (size_t i = 0; i < w->n; ++i) kick1(w, i, h, g);
+    return result;
+}

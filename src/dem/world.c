@@ -1,0 +1,640 @@
+/*---------------------------------------------------------------------------*\
+  demFoam DEM core - world handle: creation, configuration, errors, logging,
+  materials, particle storage, diagnostics.
+\*---------------------------------------------------------------------------*/
+#include "dem_private.h"
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/*--- status strings ----------------------------------------------------------*/
+static const char *const status_text[] = {
+#define DEM_X_TEXT(name, text) text,
+    DEM_STATUS_LIST(DEM_X_TEXT)
+#undef DEM_X_TEXT
+};
+
+const char *dem_status_string(dem_status s)
+{
+    if ((int)s < 0 || (int)s >= DEM_STATUS_COUNT) return "unknown status";
+    return status_text[s];
+}
+
+dem_status dem_fail_(const dem_world *wc, dem_status code, const char *file, int line,
+                     const char *fmt, ...)
+{
+    dem_world *w = (dem_world *)wc; /* the error text is mutable state of a const handle */
+    if (!w) return code;
+    const char *base = strrchr(file, '/');
+    base = base ? base + 1 : file;
+    int k = snprintf(w->err, sizeof w->err, "%s:%d: %s: ", base, line, dem_status_string(code));
+    if (k < 0) k = 0;
+    if ((size_t)k < sizeof w->err) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(w->err + k, sizeof w->err - (size_t)k, fmt, ap);
+        va_end(ap);
+    }
+    return code;
+}
+
+void dem_log_(const dem_world *w, dem_log_level lvl, const char *fmt, ...)
+{
+    if (!w || !w->log) return;
+    char buf[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    w->log(lvl, buf, w->log_user);
+}
+
+const char *dem_world_last_error(const dem_world *w) { return w ? w->err : ""; }
+
+void dem_world_set_logger(dem_world *w, dem_log_fn fn, void *user)
+{
+    if (!w) return;
+    w->log = fn;
+    w->log_user = user;
+}
+
+/*--- contact law names -------------------------------------------------------*/
+static const char *const law_names[DEM_CONTACT_LAW_COUNT] = {
+    "hertzMindlin", "linearSpringDashpot", "hertzSpringDashpot"};
+
+const char *dem_contact_law_name(dem_contact_law law)
+{
+    if ((int)law < 0 || law >= DEM_CONTACT_LAW_COUNT) return NULL;
+    return law_names[law];
+}
+
+dem_status dem_contact_law_from_name(const char *name, dem_contact_law *law)
+{
+    if (!name || !law) return DEM_ERR_ARG;
+    for (int i = 0; i < DEM_CONTACT_LAW_COUNT; ++i)
+        if (strcmp(name, law_names[i]) == 0) { *law = (dem_contact_law)i; return DEM_OK; }
+    return DEM_ERR_NOTFOUND;
+}
+
+/*--- world -------------------------------------------------------------------*/
+void dem_config_default(dem_config *c)
+{
+    if (!c) return;
+    memset(c, 0, sizeof *c);
+    c->contact_law = DEM_CONTACT_HERTZ_MINDLIN;
+    c->dt = 1e-6;
+    c->gravity[2] = -9.81;
+    c->domain_hi[0] = c->domain_hi[1] = c->domain_hi[2] = 1.0;
+    c->skin = 0.0;
+    c->max_dt_fraction = 0.2;
+    c->max_overlap_ratio = 0.1;
+    c->seed = 12345u;
+    c->spatial_sort = 1;
+}
+
+dem_status dem_world_create(dem_world **pw)
+{
+    if (!pw) return DEM_ERR_ARG;
+    dem_world *w = calloc(1, sizeof *w);
+    *pw = w;
+    if (!w) return DEM_ERR_NOMEM;
+    dem_config_default(&w->cfg);
+    dem_rng_seed(w, w->cfg.seed);
+    w->pairs_dirty = 1;
+    w->next_id = 0;
+    return DEM_OK;
+}
+
+void dem_world_destroy(dem_world **pw)
+{
+    if (!pw || !*pw) return;
+    dem_world *w = *pw;
+    free(w->mat); free(w->pair);
+    free(w->id); free(w->x); free(w->v); free(w->w); free(w->f); free(w->t);
+    free(w->rad); free(w->mass); free(w->rho); free(w->mat_of); free(w->x0);
+    free(w->list_index);
+    free(w->fext); free(w->text); free(w->K); free(w->uf); free(w->J);
+    free(w->cell_start); free(w->cell_item); free(w->cell_of); free(w->perm);
+    free(w->old2new); free(w->tmp);
+    free(w->nb_off); free(w->nb_j); free(w->nb_s); free(w->nb_h);
+    free(w->wc_off); free(w->wc_wall); free(w->wc_tri); free(w->wc_h);
+    free(w->carry); free(w->carry_off); free(w->pend); free(w->wpend);
+    free(w->wall_kind); free(w->wall_index); free(w->planes);
+    for (int i = 0; i < w->nmeshes; ++i) {
+        free(w->meshes[i].v0); free(w->meshes[i].tri); free(w->meshes[i].nrm);
+    }
+    free(w->meshes);
+    free(w->tri_mesh); free(w->tri_local); free(w->tcell_start); free(w->tcell_item);
+    for (int i = 0; i < w->ninlets; ++i) free(w->inlets[i].poly);
+    free(w->inlets); free(w->outlets); free(w->rec);
+    free(w);
+    *pw = NULL;
+}
+
+dem_status dem_world_configure(dem_world *w, const dem_config *c)
+{
+    if (!w || !c) return DEM_ERR_ARG;
+    if ((int)c->contact_law < 0 || c->contact_law >= DEM_CONTACT_LAW_COUNT)
+        return DEM_FAIL(w, DEM_ERR_ARG, "contact_law = %d; allowed 0..%d",
+                        (int)c->contact_law, DEM_CONTACT_LAW_COUNT - 1);
+    if (!(c->dt > 0) || !isfinite(c->dt))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "dt = %g; allowed > 0", c->dt);
+    for (int k = 0; k < 3; ++k) {
+        if (!isfinite(c->gravity[k]))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "gravity[%d] = %g; must be finite", k, c->gravity[k]);
+        if (!(c->domain_hi[k] > c->domain_lo[k]) || !isfinite(c->domain_hi[k] - c->domain_lo[k]))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "domain_lo[%d] = %g, domain_hi[%d] = %g; need lo < hi",
+                            k, c->domain_lo[k], k, c->domain_hi[k]);
+    }
+    if (!isfinite(c->skin))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "skin = %g; must be finite", c->skin);
+    if (!(c->max_dt_fraction > 0))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "max_dt_fraction = %g; allowed > 0", c->max_dt_fraction);
+    if (!(c->max_overlap_ratio > 0))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "max_overlap_ratio = %g; allowed > 0", c->max_overlap_ratio);
+    if (w->n + w->ng > 0) {
+        int same = c->contact_law == w->cfg.contact_law && c->skin == w->cfg.skin;
+        for (int k = 0; k < 3; ++k)
+            same = same && c->domain_lo[k] == w->cfg.domain_lo[k] &&
+                   c->domain_hi[k] == w->cfg.domain_hi[k] &&
+                   (c->periodic[k] != 0) == (w->cfg.periodic[k] != 0);
+        if (!same)
+            return DEM_FAIL(w, DEM_ERR_STATE, "contact_law, domain, periodic and skin cannot change "
+                            "once particles exist (%zu particles); dt, gravity and limits can", w->n);
+        double g[3] = {c->gravity[0], c->gravity[1], c->gravity[2]};
+        w->cfg.dt = c->dt;
+        memcpy(w->cfg.gravity, g, sizeof g);
+        w->cfg.max_dt_fraction = c->max_dt_fraction;
+        w->cfg.max_overlap_ratio = c->max_overlap_ratio;
+        w->cfg.spatial_sort = c->spatial_sort;
+        return DEM_OK;
+    }
+    uint64_t old_seed = w->cfg.seed;
+    w->cfg = *c;
+    for (int k = 0; k < 3; ++k) w->cfg.periodic[k] = c->periodic[k] ? 1 : 0;
+    if (c->seed != old_seed || w->step == 0) dem_rng_seed(w, c->seed);
+    w->pairs_dirty = 1;
+    w->list_valid = 0;
+    return DEM_OK;
+}
+
+size_t  dem_world_count(const dem_world *w) { return w ? w->n : 0; }
+double  dem_world_time(const dem_world *w) { return w ? w->time : 0.0; }
+int64_t dem_world_step_count(const dem_world *w) { return w ? w->step : 0; }
+int64_t dem_world_reorder_count(const dem_world *w) { return w ? w->reorders : 0; }
+
+/*--- materials -----------------------------------------------------------------*/
+dem_status dem_world_add_material(dem_world *w, const dem_material *m, int *material_id)
+{
+    if (!w || !m) return DEM_ERR_ARG;
+    if (!(m->poisson_ratio >= 0.0 && m->poisson_ratio < 0.5))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: poisson_ratio = %g; allowed [0, 0.5)",
+                        w->nmat, m->poisson_ratio);
+    if (!(m->friction >= 0.0) || !isfinite(m->friction))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: friction = %g; allowed >= 0", w->nmat, m->friction);
+    if (!(m->rolling_friction >= 0.0) || !isfinite(m->rolling_friction))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: rolling_friction = %g; allowed >= 0 (a length)",
+                        w->nmat, m->rolling_friction);
+    if (isnan(m->restitution) || isnan(m->damping) || !isfinite(m->youngs_modulus) ||
+        !isfinite(m->stiffness_n) || !isfinite(m->stiffness_t))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: non-finite E, stiffness, restitution or damping",
+                        w->nmat);
+    if (m->restitution >= 0.0) {
+        if (!(m->restitution > 0.0 && m->restitution <= 1.0))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: restitution = %g; allowed (0, 1] "
+                            "(or < 0 to derive it from damping)", w->nmat, m->restitution);
+        if (m->damping >= 0.0)
+            return DEM_FAIL(w, DEM_ERR_ARG, "material %d: restitution = %g and damping = %g both given; "
+                            "give one and set the other < 0", w->nmat, m->restitution, m->damping);
+    } else if (!(m->damping >= 0.0) || !isfinite(m->damping)) {
+        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: restitution = %g and damping = %g; give "
+                        "restitution in (0, 1] or damping >= 0", w->nmat, m->restitution, m->damping);
+    }
+    int hertz = w->cfg.contact_law == DEM_CONTACT_HERTZ_MINDLIN;
+    if (hertz && !(m->youngs_modulus > 0))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: youngs_modulus = %g; allowed > 0 (law %s)",
+                        w->nmat, m->youngs_modulus, law_names[w->cfg.contact_law]);
+    if (!hertz && !(m->stiffness_n > 0))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: stiffness_n = %g; allowed > 0 (law %s)",
+                        w->nmat, m->stiffness_n, law_names[w->cfg.contact_law]);
+    if (w->nmat == w->capmat) {
+        int nc = w->capmat ? 2 * w->capmat : 4;
+        dem_material *p = realloc(w->mat, (size_t)nc * sizeof *p);
+        if (!p) return DEM_FAIL(w, DEM_ERR_NOMEM, "materials: %d entries", nc);
+        w->mat = p;
+        w->capmat = nc;
+    }
+    dem_material mm = *m;
+    if (!(mm.stiffness_t > 0)) mm.stiffness_t = 2.0 / 7.0 * mm.stiffness_n;
+    w->mat[w->nmat] = mm;
+    if (material_id) *material_id = w->nmat;
+    w->nmat++;
+    w->pairs_dirty = 1;
+    return DEM_OK;
+}
+
+/* Restitution of a material for the current law (linear law with a damping
+ * in N s/m: -1, it depends on the mass). */
+static void material_derived(const dem_world *w, const dem_material *m, double *e, double *c)
+{
+    if (w->cfg.contact_law == DEM_CONTACT_HERTZ_MINDLIN) {
+        if (m->restitution > 0) { *e = m->restitution; *c = dem_hm_damping(m->restitution); }
+        else { *c = m->damping; *e = dem_hm_restitution(m->damping); }
+    } else {
+        *e = m->restitution > 0 ? m->restitution : -1.0;
+        *c = m->damping;
+    }
+}
+
+dem_status dem_world_material_get(const dem_world *w, int id, dem_material *m)
+{
+    if (!w || !m) return DEM_ERR_ARG;
+    if (id < 0 || id >= w->nmat)
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "material %d; %d defined", id, w->nmat);
+    *m = w->mat[id];
+    material_derived(w, &w->mat[id], &m->restitution, &m->damping);
+    return DEM_OK;
+}
+
+dem_status dem_pairs_update(dem_world *w)
+{
+    if (!w->pairs_dirty) return DEM_OK;
+    int nm = w->nmat;
+    dem_pair *p = realloc(w->pair, (size_t)(nm > 0 ? nm * nm : 1) * sizeof *p);
+    if (!p) return DEM_FAIL(w, DEM_ERR_NOMEM, "pair table %d x %d", nm, nm);
+    w->pair = p;
+    int law = w->cfg.contact_law;
+    for (int i = 0; i < nm; ++i) {
+        const dem_material *a = &w->mat[i];
+        if (law == DEM_CONTACT_HERTZ_MINDLIN && !(a->youngs_modulus > 0))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: youngs_modulus = %g; allowed > 0 (law %s)",
+                            i, a->youngs_modulus, law_names[law]);
+        if (law != DEM_CONTACT_HERTZ_MINDLIN && !(a->stiffness_n > 0))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: stiffness_n = %g; allowed > 0 (law %s)",
+                            i, a->stiffness_n, law_names[law]);
+    }
+    for (int i = 0; i < nm; ++i) {
+        for (int j = 0; j < nm; ++j) {
+            const dem_material *a = &w->mat[i], *b = &w->mat[j];
+            dem_pair *q = &p[i * nm + j];
+            memset(q, 0, sizeof *q);
+            double ea, ca, eb, cb;
+            material_derived(w, a, &ea, &ca);
+            material_derived(w, b, &eb, &cb);
+            q->mu = fmin(a->friction, b->friction);
+            q->mu_r = fmin(a->rolling_friction, b->rolling_friction);
+            q->nu = 0.5 * (a->poisson_ratio + b->poisson_ratio);
+            q->mindlin = (2.0 - q->nu) / (2.0 * (1.0 - q->nu));
+            if (law == DEM_CONTACT_HERTZ_MINDLIN) {
+                q->estar = 1.0 / ((1.0 - a->poisson_ratio * a->poisson_ratio) / a->youngs_modulus +
+                                  (1.0 - b->poisson_ratio * b->poisson_ratio) / b->youngs_modulus);
+                q->e = fmin(ea, eb);
+                q->cn = q->ct = (ea <= eb) ? ca : cb;
+            } else {
+                q->kn = (i == j) ? a->stiffness_n
+                                 : a->stiffness_n * b->stiffness_n / (a->stiffness_n + b->stiffness_n);
+                q->kt = (i == j) ? a->stiffness_t
+                                 : a->stiffness_t * b->stiffness_t / (a->stiffness_t + b->stiffness_t);
+                if (ea > 0 && eb > 0) {
+                    q->e = fmin(ea, eb);
+                    q->beta = dem_lsd_beta(q->e);
+                    q->eta_fixed = -1.0;
+                } else {
+                    q->e = -1.0;
+                    q->eta_fixed = fmax(ea > 0 ? -1.0 : ca, eb > 0 ? -1.0 : cb);
+                    q->beta = 0.0;
+                }
+            }
+        }
+    }
+    w->pairs_dirty = 0;
+    return DEM_OK;
+}
+
+/*--- particle storage ----------------------------------------------------------*/
+#define GROW(ptr, n) do { void *q_ = realloc((ptr), (n) * sizeof *(ptr)); if (!q_) return DEM_ERR_NOMEM; (ptr) = q_; } while (0)
+
+static dem_status reserve_raw(dem_world *w, size_t cap)
+{
+    GROW(w->id, cap); GROW(w->x, 3 * cap); GROW(w->v, 3 * cap); GROW(w->w, 3 * cap);
+    GROW(w->f, 3 * cap); GROW(w->t, 3 * cap); GROW(w->rad, cap); GROW(w->mass, cap);
+    GROW(w->rho, cap); GROW(w->mat_of, cap); GROW(w->x0, 3 * cap); GROW(w->list_index, cap);
+    GROW(w->cell_of, cap); GROW(w->perm, cap + 1); GROW(w->tmp, 3 * cap);
+    if (w->have_ext) {
+        GROW(w->fext, 3 * cap); GROW(w->text, 3 * cap); GROW(w->K, cap);
+        GROW(w->uf, 3 * cap); GROW(w->J, 3 * cap);
+    }
+    w->cap = cap;
+    return DEM_OK;
+}
+
+dem_status dem_reserve(dem_world *w, size_t cap)
+{
+    if (cap <= w->cap) return DEM_OK;
+    size_t nc = w->cap ? w->cap : 64;
+    while (nc < cap) nc *= 2;
+    if (reserve_raw(w, nc) != DEM_OK)
+        return DEM_FAIL(w, DEM_ERR_NOMEM, "particle storage for %zu particles", nc);
+    return DEM_OK;
+}
+
+dem_status dem_ext_alloc(dem_world *w)
+{
+    if (w->have_ext) return DEM_OK;
+    size_t cap = w->cap ? w->cap : 1;
+    w->fext = calloc(3 * cap, sizeof(double));
+    w->text = calloc(3 * cap, sizeof(double));
+    w->K = calloc(cap, sizeof(double));
+    w->uf = calloc(3 * cap, sizeof(double));
+    w->J = calloc(3 * cap, sizeof(double));
+    if (!w->fext || !w->text || !w->K || !w->uf || !w->J) {
+        free(w->fext); free(w->text); free(w->K); free(w->uf); free(w->J);
+        w->fext = w->text = w->K = w->uf = w->J = NULL;
+        return DEM_FAIL(w, DEM_ERR_NOMEM, "coupling arrays for %zu particles", cap);
+    }
+    w->have_ext = 1;
+    return DEM_OK;
+}
+
+/* Copy particle src to slot dst (both < cap). */
+static void move_particle(dem_world *w, size_t dst, size_t src)
+{
+    if (dst == src) return;
+    w->id[dst] = w->id[src];
+    memcpy(w->x + 3 * dst, w->x + 3 * src, 3 * sizeof(double));
+    memcpy(w->v + 3 * dst, w->v + 3 * src, 3 * sizeof(double));
+    memcpy(w->w + 3 * dst, w->w + 3 * src, 3 * sizeof(double));
+    memcpy(w->f + 3 * dst, w->f + 3 * src, 3 * sizeof(double));
+    memcpy(w->t + 3 * dst, w->t + 3 * src, 3 * sizeof(double));
+    memcpy(w->x0 + 3 * dst, w->x0 + 3 * src, 3 * sizeof(float));
+    w->rad[dst] = w->rad[src]; w->mass[dst] = w->mass[src]; w->rho[dst] = w->rho[src];
+    w->mat_of[dst] = w->mat_of[src]; w->list_index[dst] = w->list_index[src];
+    if (w->have_ext) {
+        memcpy(w->fext + 3 * dst, w->fext + 3 * src, 3 * sizeof(double));
+        memcpy(w->text + 3 * dst, w->text + 3 * src, 3 * sizeof(double));
+        memcpy(w->uf + 3 * dst, w->uf + 3 * src, 3 * sizeof(double));
+        memcpy(w->J + 3 * dst, w->J + 3 * src, 3 * sizeof(double));
+        w->K[dst] = w->K[src];
+    }
+}
+
+/* Validated append of one owned particle (ghosts, if any, are shifted up). */
+dem_status dem_append_particle(dem_world *w, const dem_particle *p)
+{
+    if (!(p->radius > 0) || !isfinite(p->radius))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "particle id %lld: radius = %g; allowed > 0",
+                        (long long)p->id, p->radius);
+    if (!(p->density > 0) || !isfinite(p->density))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "particle id %lld: density = %g; allowed > 0",
+                        (long long)p->id, p->density);
+    if (p->material < 0 || p->material >= w->nmat)
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "particle id %lld: material = %d; %d materials defined",
+                        (long long)p->id, p->material, w->nmat);
+    for (int k = 0; k < 3; ++k)
+        if (!isfinite(p->x[k]) || !isfinite(p->v[k]) || !isfinite(p->omega[k]))
+            return DEM_FAIL(w, DEM_ERR_NAN, "particle id %lld: non-finite position, velocity or "
+                            "angular velocity component %d", (long long)p->id, k);
+    dem_status s = dem_reserve(w, w->n + w->ng + 1);
+    if (s) return s;
+    size_t i = w->n;
+    if (w->ng) move_particle(w, w->n + w->ng, w->n); /* first ghost to the end */
+    w->id[i] = p->id >= 0 ? p->id : w->next_id;
+    if (w->id[i] >= w->next_id) w->next_id = w->id[i] + 1;
+    for (int k = 0; k < 3; ++k) {
+        w->x[3 * i + k] = p->x[k]; w->v[3 * i + k] = p->v[k]; w->w[3 * i + k] = p->omega[k];
+        w->f[3 * i + k] = 0.0; w->t[3 * i + k] = 0.0; w->x0[3 * i + k] = (float)p->x[k];
+    }
+    w->rad[i] = p->radius;
+    w->rho[i] = p->density;
+    w->mass[i] = p->density * 4.0 / 3.0 * DEM_PI * p->radius * p->radius * p->radius;
+    w->mat_of[i] = p->material;
+    w->list_index[i] = -1;
+    if (w->have_ext) {
+        for (int k = 0; k < 3; ++k)
+            w->fext[3 * i + k] = w->text[3 * i + k] = w->uf[3 * i + k] = w->J[3 * i + k] = 0.0;
+        w->K[i] = 0.0;
+    }
+    w->n++;
+    w->list_valid = 0;
+    w->forces_valid = 0;
+    w->reorders++;
+    return DEM_OK;
+}
+
+dem_status dem_world_add_particles(dem_world *w, size_t n, const dem_particle *p)
+{
+    if (!w || (n && !p)) return DEM_ERR_ARG;
+    if (w->nmat == 0) return DEM_FAIL(w, DEM_ERR_STATE, "add a material before particles");
+    dem_status s = dem_reserve(w, w->n + w->ng + n);
+    if (s) return s;
+    for (size_t i = 0; i < n; ++i) {
+        s = dem_append_particle(w, &p[i]);
+        if (s) return s;
+    }
+    return DEM_OK;
+}
+
+void dem_remove_index(dem_world *w, size_t i)
+{
+    size_t last = w->n - 1;
+    move_particle(w, i, last);
+    if (w->ng) move_particle(w, last, w->n + w->ng - 1);
+    w->n--;
+    w->removed++;
+    w->list_valid = 0;
+    w->reorders++;
+}
+
+static dem_status book_removal(dem_world *w, size_t i, int outlet)
+{
+    if (outlet < 0) return DEM_OK;
+    if (w->nrec == w->caprec) {
+        size_t nc = w->caprec ? 2 * w->caprec : 64;
+        dem_removed_record *r = realloc(w->rec, nc * sizeof *r);
+        if (!r) return DEM_FAIL(w, DEM_ERR_NOMEM, "removal records: %zu", nc);
+        w->rec = r;
+        w->caprec = nc;
+    }
+    dem_removed_record *r = &w->rec[w->nrec++];
+    r->id = w->id[i];
+    r->time = w->time;
+    r->diameter = 2.0 * w->rad[i];
+    r->density = w->rho[i];
+    r->outlet = outlet;
+    w->outlets[outlet].count++;
+    w->outlets[outlet].mass += w->mass[i];
+    return DEM_OK;
+}
+
+dem_status dem_remove_booked(dem_world *w, size_t i, int outlet)
+{
+    dem_status s = book_removal(w, i, outlet);
+    if (s) return s;
+    dem_remove_index(w, i);
+    return DEM_OK;
+}
+
+dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (index >= w->n)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "remove_particle: index %zu; %zu owned particles", index, w->n);
+    if (outlet >= w->noutlets || outlet < -1)
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "remove_particle: outlet %d; %d outlets defined",
+                        outlet, w->noutlets);
+    return dem_remove_booked(w, index, outlet);
+}
+
+dem_status dem_world_arrays(dem_world *w, dem_arrays *a)
+{
+    if (!w || !a) return DEM_ERR_ARG;
+    if (!w->cap) { dem_status s = dem_reserve(w, 64); if (s) return s; }
+    dem_status s = dem_ext_alloc(w);
+    if (s) return s;
+    a->n_owned = w->n;
+    a->n_ghost = w->ng;
+    a->id = w->id;
+    a->x = w->x; a->v = w->v; a->omega = w->w;
+    a->radius = w->rad; a->mass = w->mass; a->density = w->rho;
+    a->material = w->mat_of;
+    a->force_ext = w->fext; a->torque_ext = w->text;
+    a->drag_coeff = w->K; a->fluid_velocity = w->uf; a->drag_impulse = w->J;
+    return DEM_OK;
+}
+
+/*--- diagnostics -----------------------------------------------------------------*/
+dem_status dem_world_stats(const dem_world *w, dem_stats *s)
+{
+    if (!w || !s) return DEM_ERR_ARG;
+    memset(s, 0, sizeof *s);
+    for (size_t i = 0; i < w->n; ++i) {
+        const double *v = w->v + 3 * i, *om = w->w + 3 * i;
+        double m = w->mass[i], I = 0.4 * m * w->rad[i] * w->rad[i];
+        s->kinetic_energy += 0.5 * m * dem_dot(v, v);
+        s->rotational_energy += 0.5 * I * dem_dot(om, om);
+        for (int k = 0; k < 3; ++k) s->momentum[k] += m * v[k];
+    }
+    s->max_overlap_ratio = w->max_overlap;
+    s->pair_contacts = w->pair_contacts;
+    s->wall_contacts = w->wall_contacts;
+    s->inserted = w->inserted;
+    s->removed = w->removed;
+    return DEM_OK;
+}
+
+dem_status dem_world_particle_contacts(const dem_world *w, int *coord, double *force)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (force) {
+        if (w->forces_valid) memcpy(force, w->f, 3 * w->n * sizeof(double));
+        else memset(force, 0, 3 * w->n * sizeof(double));
+    }
+    if (coord) {
+        memset(coord, 0, w->n * sizeof(int));
+        if (!w->list_valid || !w->forces_valid) return DEM_OK;
+        for (size_t i = 0; i < w->nrows; ++i) {
+            for (int k = w->nb_off[i]; k < w->nb_off[i + 1]; ++k) {
+                size_t j = (size_t)w->nb_j[k];
+                const double *sh = w->shift[w->nb_s[k]];
+                double d[3], r2 = 0, s = w->rad[i] + w->rad[j];
+                for (int c = 0; c < 3; ++c) { d[c] = w->x[3 * i + c] - w->x[3 * j + c] + sh[c]; r2 += d[c] * d[c]; }
+                if (r2 < s * s) {
+                    if (i < w->n) coord[i]++;
+                    if (j < w->n) coord[j]++;
+                }
+            }
+        }
+    }
+    return DEM_OK;
+}
+
+/*--- contact time ------------------------------------------------------------------*/
+/* Elastic Hertz contact duration t_c = 2 * (2/5) B(2/5,1/2) * delta_max / v,
+ * delta_max = (15 m v^2 / (16 E* sqrt(R)))^(2/5) (Hertz theory; e.g. Johnson,
+ * Contact Mechanics, 1985, sec. 11.4). */
+double dem_hertz_time(double meff, double rstar, double estar, double v)
+{
+    double c = 2.0 * 0.4 * tgamma(0.4) * tgamma(0.5) / tgamma(0.9);
+    double dm = pow(15.0 * meff * v * v / (16.0 * estar * sqrt(rstar)), 0.4);
+    return c * dm / v;
+}
+
+/* Rayleigh time pi R sqrt(rho/G) / (0.1631 nu + 0.8766) (Rayleigh-wave
+ * speed fit; Li, Xu & Thornton, Powder Technol. 160 (2005) 219). */
+static double rayleigh_time(double r, double rho, double E, double nu)
+{
+    double G = E / (2.0 * (1.0 + nu));
+    return DEM_PI * r * sqrt(rho / G) / (0.1631 * nu + 0.8766);
+}
+
+/* Smallest contact time over material pairs present.  v_imp <= 0 with a
+ * Hertz law: Rayleigh time only. */
+dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayleigh, double *tc)
+{
+    *tc = INFINITY;
+    int nm = w->nmat;
+    if (nm == 0 || w->n + w->ng == 0) return DEM_OK;
+    double rmin[64], mmin[64], rhomax[64];
+    int present[64];
+    if (nm > 64) nm = 64; /* contact-time estimate over the first 64 materials */
+    for (int m = 0; m < nm; ++m) { rmin[m] = INFINITY; mmin[m] = INFINITY; rhomax[m] = 0; present[m] = 0; }
+    for (size_t i = 0; i < w->n + w->ng; ++i) {
+        int m = w->mat_of[i];
+        if (m >= nm) continue;
+        present[m] = 1;
+        if (w->rad[i] < rmin[m]) rmin[m] = w->rad[i];
+        if (w->mass[i] < mmin[m]) mmin[m] = w->mass[i];
+        if (w->rho[i] > rhomax[m]) rhomax[m] = w->rho[i];
+    }
+    int wallmat[64] = {0};
+    for (int k = 0; k < w->nplanes; ++k) if (w->planes[k].material < nm) wallmat[w->planes[k].material] = 1;
+    for (int k = 0; k < w->nmeshes; ++k) if (w->meshes[k].material < nm) wallmat[w->meshes[k].material] = 1;
+    for (int a = 0; a < nm; ++a) {
+        if (!present[a]) continue;
+        for (int b = 0; b < nm; ++b) {
+            if (!present[b] && !wallmat[b]) continue;
+            const dem_pair *q = &w->pair[a * w->nmat + b];
+            /* particle-particle (smallest of each) and particle-wall */
+            double meff_pp = present[b] ? mmin[a] * mmin[b] / (mmin[a] + mmin[b]) : INFINITY;
+            double rs_pp = present[b] ? rmin[a] * rmin[b] / (rmin[a] + rmin[b]) : INFINITY;
+            for (int wall = 0; wall < 2; ++wall) {
+                double meff = wall ? mmin[a] : meff_pp, rs = wall ? rmin[a] : rs_pp;
+                if (wall && !wallmat[b]) continue;
+                if (!isfinite(meff)) continue;
+                double t;
+                if (w->cfg.contact_law == DEM_CONTACT_HERTZ_MINDLIN) {
+                    t = INFINITY;
+                    if (v_imp > 0) t = dem_hertz_time(meff, rs, q->estar, v_imp);
+                    if (rayleigh || !(v_imp > 0)) {
+                        const dem_material *ma = &w->mat[a];
+                        t = fmin(t, rayleigh_time(rmin[a], rhomax[a], ma->youngs_modulus, ma->poisson_ratio));
+                    }
+                } else {
+                    double eta = q->eta_fixed >= 0 ? q->eta_fixed : q->beta * sqrt(q->kn * meff);
+                    double gam = eta / meff, om2 = q->kn / meff - 0.25 * gam * gam;
+                    t = om2 > 0 ? DEM_PI / sqrt(om2) : INFINITY;
+                    if (w->cfg.contact_law == DEM_CONTACT_HERTZ_SPRING_DASHPOT && v_imp > 0) {
+                        /* f = sqrt(delta/d): k_n delta^(3/2)/sqrt(d) acts as Hertz with
+                           (4/3) E* sqrt(R*) = k_n / sqrt(d) */
+                        double d = 2.0 * rs * (wall ? 1.0 : 2.0);
+                        double es = 0.75 * q->kn / sqrt(d * rs);
+                        t = dem_hertz_time(meff, rs, es, v_imp);
+                    }
+                }
+                if (t < *tc) *tc = t;
+            }
+        }
+    }
+    return DEM_OK;
+}
+
+dem_status dem_world_contact_time(const dem_world *wc, double impact_speed, double *t_contact)
+{
+    if (!wc || !t_contact) return DEM_ERR_ARG;
+    dem_world *w = (dem_world *)wc; /* pair table is a cache */
+    dem_status s = dem_pairs_update(w);
+    if (s) return s;
+    return dem_contact_time_internal(w, impact_speed, 0, t_contact);
+}
