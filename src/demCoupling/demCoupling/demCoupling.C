@@ -78,7 +78,6 @@ Foam::demCoupling::demCoupling
     dragUpdateInterval_(0),
     nSubCycles_(0),
     lostUnknown_(0),
-    nLastCoupled_(0),
     bedEta_(0),
     balanceFluid_(0),
     balanceParticle_(0),
@@ -835,10 +834,12 @@ void Foam::demCoupling::evolve
     }
     nSubCycles_ = nDem;
 
-    // 1-2: positions at the start of the step (located by the last call)
+    // 1-2: positions at the start of the step (located by the last call).
+    // Per-particle data below are indexed by the start index s; the core
+    // may re-sort its storage inside dem_world_step, so the current index
+    // is mapped back to s through the particle id.
     dem_arrays a = world_.arrays();
     const label n = label(a.n_owned);
-    nLastCoupled_ = n;
 
     const volVectorField gradPKin(fvc::grad(p));
     const vectorField& Uc = U.primitiveField();
@@ -849,81 +850,100 @@ void Foam::demCoupling::evolve
     const scalarField& V = mesh_.V();
     const couplingFormulation& form = formulation_();
 
-    fDrag_.setSize(n);
-    fGradP_.setSize(n);
-    uFluid_.setSize(n);
-    etaP_.setSize(n);
-    epsP_.setSize(n);
-    List<vector> fExch(n);
-    List<vector> fPart(n);
-    List<vector> divTauP(n);
-    scalarField muP(n);
-    scalarField dragFac(n);
+    List<vector> uF(n), fGP(n), fExch(n), fPart(n), divTauP(n);
+    scalarField epsP(n), muP(n), dragFac(n), Ksum(n, 0);
+
+    // id -> start index
+    for (label s = 0; s < n; ++s)
+    {
+        const int64_t id = a.id[s];
+        if (id >= startById_.size())
+        {
+            const label old = startById_.size();
+            startById_.setSize(max(label(id + 1), 2*old + 16));
+            for (label k = old; k < startById_.size(); ++k) startById_[k] = -1;
+        }
+        startById_[id] = s;
+    }
+    auto startIndex = [&](const int64_t id) -> label
+    {
+        if (id < 0 || id >= startById_.size()) return -1;
+        const label s = startById_[id];
+        return (s >= 0 && s < n && a.id[s] == id) ? s : -1;
+    };
+    // ids by start index (a.id may be reordered later)
+    List<int64_t> idStart(n);
+    for (label s = 0; s < n; ++s) idStart[s] = a.id[s];
+    auto startOf = [&](const int64_t id) -> label
+    {
+        if (id < 0 || id >= startById_.size()) return -1;
+        const label s = startById_[id];
+        return (s >= 0 && s < n && idStart[s] == id) ? s : -1;
+    };
+    (void)startIndex;
 
     // cell-mean particle velocity (for the cell-mean drag variant)
-    vectorField vsCell;
-    if (cellMeanDrag_)
-    {
-        vsCell = Up_.primitiveField();
-    }
+    const vectorField& vsCell = Up_.primitiveField();
 
-    for (label i = 0; i < n; ++i)
+    for (label s = 0; s < n; ++s)
     {
-        const scalar Vp = 4.0/3.0*pi*pow3(a.radius[i]);
-        uFluid_[i] = interp(i, Uc);
-        const vector gp = rhof_*interp(i, gradPc);
-        const vector dtau = rhof_*interp(i, divTc);
-        epsP_[i] = interp(i, epsc);
-        muP[i] = rhof_*interp(i, nuc);
-        dragFac[i] = form.dragFactor(epsP_[i]);
-        fGradP_[i] = -Vp*gp;
-        divTauP[i] = Vp*dtau;
-        form.explicitForces(Vp, gp, dtau, rhof_, g_, fPart[i], fExch[i]);
-        setVec(a.force_ext, i, fPart[i]);
-        setVec(a.torque_ext, i, vector::zero);
-        setVec(a.drag_impulse, i, vector::zero);
+        const scalar Vp = 4.0/3.0*pi*pow3(a.radius[s]);
+        uF[s] = interp(s, Uc);
+        const vector gp = rhof_*interp(s, gradPc);
+        const vector dtau = rhof_*interp(s, divTc);
+        epsP[s] = interp(s, epsc);
+        muP[s] = rhof_*interp(s, nuc);
+        dragFac[s] = form.dragFactor(epsP[s]);
+        fGP[s] = -Vp*gp;
+        divTauP[s] = Vp*dtau;
+        form.explicitForces(Vp, gp, dtau, rhof_, g_, fPart[s], fExch[s]);
+        setVec(a.force_ext, s, fPart[s]);
+        setVec(a.torque_ext, s, vector::zero);
+        setVec(a.drag_impulse, s, vector::zero);
     }
 
     // 3: DEM sub-steps with drag re-evaluated every chunk
     const label chunk =
         dragUpdateInterval_ > 0 ? min(dragUpdateInterval_, nDem) : nDem;
-    scalarField Ksum(n, 0);   // time-weighted particle drag coefficient
 
     label done = 0;
     while (done < nDem)
     {
         const label m = min(chunk, nDem - done);
         a = world_.arrays();
-        const label nNow = min(n, label(a.n_owned));
-        for (label i = 0; i < nNow; ++i)
+        for (label j = 0; j < label(a.n_owned); ++j)
         {
-            const vector v(toVec(a.v, i));
-            vector slip = uFluid_[i] - v;
-            vector uf = uFluid_[i];
+            const label s = startOf(a.id[j]);
+            if (s < 0)
+            {
+                // inserted during this fluid step: no drag until located
+                a.drag_coeff[j] = 0;
+                setVec(a.fluid_velocity, j, vector::zero);
+                continue;
+            }
+            const vector v(toVec(a.v, j));
+            vector slip = uF[s] - v;
+            vector uf = uF[s];
             if (cellMeanDrag_)
             {
-                const vector vs = interp(i, vsCell);
-                slip = uFluid_[i] - vs;
-                uf = uFluid_[i] - vs + v;
+                // [S] method 1: drag from the cell-mean particle velocity
+                const vector vs = interp(s, vsCell);
+                slip = uF[s] - vs;
+                uf = uF[s] - vs + v;
             }
             const scalar K =
-                drag_->K(2*a.radius[i], epsP_[i], mag(slip), rhof_, muP[i])
-               *dragFac[i];
-            a.drag_coeff[i] = K;
-            setVec(a.fluid_velocity, i, uf);
-            Ksum[i] += K*m/nDem;
+                drag_->K(2*a.radius[j], epsP[s], mag(slip), rhof_, muP[s])
+               *dragFac[s];
+            a.drag_coeff[j] = K;
+            setVec(a.fluid_velocity, j, uf);
+            Ksum[s] += K*m/nDem;
             if (frozen_)
             {
                 // fixed bed: no DEM motion; the exchange is the drag at v
-                const vector imp = toVec(a.drag_impulse, i) + K*(uf - v)*m*demDt_;
-                setVec(a.drag_impulse, i, imp);
+                const vector imp =
+                    toVec(a.drag_impulse, j) + K*(uf - v)*m*demDt_;
+                setVec(a.drag_impulse, j, imp);
             }
-        }
-        for (label i = nNow; i < label(a.n_owned); ++i)
-        {
-            // particles inserted during this step: no drag until located
-            a.drag_coeff[i] = 0;
-            setVec(a.fluid_velocity, i, vector::zero);
         }
         if (!frozen_)
         {
@@ -934,53 +954,72 @@ void Foam::demCoupling::evolve
 
     // 4: exchange, eta, balance (start-of-step weights)
     a = world_.arrays();
-    if (label(a.n_owned) < n)
-    {
-        FatalErrorInFunction
-            << "particles were removed inside dem_world_step; demFoam books "
-            << "outlets itself and expects none" << exit(FatalError);
-    }
+    const label nEnd = label(a.n_owned);
 
     vectorField Fc(mesh_.nCells(), Zero);
     scalarField Kcell(mesh_.nCells(), 0);
     vector sumParticle(Zero);
     scalar sumMagParticle = 0;
     scalar etaSum = 0;
+    label etaN = 0;
     scalarField etaCell(mesh_.nCells(), 0);
     scalarField wCell(mesh_.nCells(), 0);
 
-    for (label i = 0; i < n; ++i)
+    outIds_.setSize(nEnd);
+    fDrag_.setSize(nEnd);
+    fGradP_.setSize(nEnd);
+    etaP_.setSize(nEnd);
+    label nSeen = 0;
+
+    for (label j = 0; j < nEnd; ++j)
     {
-        const scalar Vp = 4.0/3.0*pi*pow3(a.radius[i]);
-        const vector dragRate = toVec(a.drag_impulse, i)/dt;
-        const vector fpf = dragRate + fPart[i];
+        outIds_[j] = a.id[j];
+        const label s = startOf(a.id[j]);
+        if (s < 0)
+        {
+            fDrag_[j] = Zero; fGradP_[j] = Zero; etaP_[j] = 0;
+            continue;
+        }
+        ++nSeen;
+        const scalar Vp = 4.0/3.0*pi*pow3(a.radius[j]);
+        const vector dragRate = toVec(a.drag_impulse, j)/dt;
+        const vector fpf = dragRate + fPart[s];
         sumParticle += fpf;
         sumMagParticle += mag(fpf);
-        const vector exch = dragRate + fExch[i];
+        const vector exch = dragRate + fExch[s];
 
         // [Z]'s f_d of this particle (the drag before the set's factor)
-        const vector fd = dragRate/dragFac[i];
-        fDrag_[i] = dragRate;
+        const vector fd = dragRate/dragFac[s];
+        fDrag_[j] = dragRate;
+        fGradP_[j] = fGP[s];
 
         // applicability index [Z 2.25-2.27], physics.md section 5
-        const scalar e = epsP_[i];
+        const scalar e = epsP[s];
         const vector fResid =
-            fGradP_[i] - fd*(1 - e)/e + divTauP[i] + rhof_*Vp*g_;
+            fGP[s] - fd*(1 - e)/e + divTauP[s] + rhof_*Vp*g_;
         const vector fTotal = fd/e - rhof_*Vp*g_ + fResid;
-        etaP_[i] = 100*mag(fResid)/max(mag(fTotal), VSMALL);
-        etaSum += etaP_[i];
+        etaP_[j] = 100*mag(fResid)/max(mag(fTotal), VSMALL);
+        etaSum += etaP_[j];
+        ++etaN;
 
-        for (label k = wStart_[i]; k < wStart_[i+1]; ++k)
+        for (label k = wStart_[s]; k < wStart_[s+1]; ++k)
         {
             const label c = wCells_[k];
             const scalar w = wValues_[k];
             Fc[c] += w*exch;
-            Kcell[c] += w*Ksum[i];
-            etaCell[c] += w*etaP_[i];
+            Kcell[c] += w*Ksum[s];
+            etaCell[c] += w*etaP_[j];
             wCell[c] += w;
         }
     }
-    bedEta_ = n ? etaSum/n : 0;
+    if (nSeen != n)
+    {
+        FatalErrorInFunction
+            << n - nSeen << " particles were removed inside dem_world_step; "
+            << "demFoam books outlets itself and expects none"
+            << exit(FatalError);
+    }
+    bedEta_ = etaN ? etaSum/etaN : 0;
 
     // fluid momentum source S = -F + (1 - c)(grad p - div tau); c from the
     // solid fraction of the same weights (exact, unclipped)

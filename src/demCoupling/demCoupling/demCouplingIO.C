@@ -1,6 +1,7 @@
 #include "demCoupling.H"
 #include "passiveParticleCloud.H"
 #include "IOField.H"
+#include "Map.H"
 #include "OSspecific.H"
 #include "mathematicalConstants.H"
 
@@ -102,16 +103,24 @@ void Foam::demCoupling::write() const
     );
     IOField<label> id(cloud.fieldIOobject("id", IOobject::NO_READ), n);
 
+    // per-particle results of the last coupling step, by id
+    Map<label> outIndex(2*outIds_.size() + 1);
+    forAll(outIds_, j)
+    {
+        outIndex.insert(label(outIds_[j]), j);
+    }
+
     for (label i = 0; i < n; ++i)
     {
         d[i] = 2*a.radius[i];
         rho[i] = a.density[i];
         U[i] = vector(a.v[3*i], a.v[3*i+1], a.v[3*i+2]);
         omega[i] = vector(a.omega[3*i], a.omega[3*i+1], a.omega[3*i+2]);
-        const bool known = i < nLastCoupled_ && i < fDrag_.size();
-        Fdrag[i] = known ? fDrag_[i] : vector::zero;
-        FgradP[i] = known ? fGradP_[i] : vector::zero;
-        eta[i] = known ? etaP_[i] : 0;
+        const auto iter = outIndex.cfind(label(a.id[i]));
+        const bool known = iter.found();
+        Fdrag[i] = known ? fDrag_[*iter] : vector::zero;
+        FgradP[i] = known ? fGradP_[*iter] : vector::zero;
+        eta[i] = known ? etaP_[*iter] : 0;
         coordination[i] = coord[i];
         id[i] = label(a.id[i]);
     }
