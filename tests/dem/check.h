@@ -1,0 +1,118 @@
+/*---------------------------------------------------------------------------*\
+  demFoam DEM core tests - shared helpers.  Output protocol of
+  docs/developers.md: one line per check,
+      PASS: <name>: <measured> vs <expected> (tol <tolerance>)
+  and a non-zero exit status if any check failed (check_exit()).
+\*---------------------------------------------------------------------------*/
+#ifndef DEM_TEST_CHECK_H
+#define DEM_TEST_CHECK_H
+
+#include "dem.h"
+#include <math.h>
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Sanitizer builds (-DDEM_TEST_QUICK) run shorter versions of the long tests. */
+#ifdef DEM_TEST_QUICK
+#define QUICK 1
+#else
+#define QUICK 0
+#endif
+
+static int check_failures = 0;
+
+/* relative tolerance check (|m - e| <= tol |e|) */
+static inline int check_rel(const char *name, double measured, double expected, double tol)
+{
+    int ok = isfinite(measured) && fabs(measured - expected) <= tol * fabs(expected);
+    printf("%s: %s: %.10g vs %.10g (tol %g relative)\n", ok ? "PASS" : "FAIL", name, measured, expected, tol);
+    if (!ok) check_failures++;
+    return ok;
+}
+
+/* absolute tolerance check */
+static inline int check_abs(const char *name, double measured, double expected, double tol)
+{
+    int ok = isfinite(measured) && fabs(measured - expected) <= tol;
+    printf("%s: %s: %.10g vs %.10g (tol %g absolute)\n", ok ? "PASS" : "FAIL", name, measured, expected, tol);
+    if (!ok) check_failures++;
+    return ok;
+}
+
+/* measured in [lo, hi] */
+static inline int check_range(const char *name, double measured, double lo, double hi)
+{
+    int ok = measured >= lo && measured <= hi;
+    printf("%s: %s: %.10g vs [%g, %g] (tol range)\n", ok ? "PASS" : "FAIL", name, measured, lo, hi);
+    if (!ok) check_failures++;
+    return ok;
+}
+
+/* measured < bound */
+static inline int check_below(const char *name, double measured, double bound)
+{
+    int ok = measured < bound;
+    printf("%s: %s: %.10g vs < %g (tol bound)\n", ok ? "PASS" : "FAIL", name, measured, bound);
+    if (!ok) check_failures++;
+    return ok;
+}
+
+static inline int check_status(const char *name, dem_status got, dem_status want)
+{
+    int ok = got == want;
+    printf("%s: %s: %s vs %s (tol exact)\n", ok ? "PASS" : "FAIL", name, dem_status_string(got),
+           dem_status_string(want));
+    if (!ok) check_failures++;
+    return ok;
+}
+
+static inline int check_exit(void) { return check_failures ? 1 : 0; }
+
+/* Abort the test program (not the library) on an unexpected error. */
+#define TRY(w, call) do { dem_status s_ = (call); if (s_ != DEM_OK) { \
+    printf("FAIL: %s:%d: %s: %s vs success (tol exact) [%s]\n", __FILE__, __LINE__, #call, \
+           dem_status_string(s_), (w) ? dem_world_last_error(w) : ""); exit(1); } } while (0)
+
+static inline dem_material test_material(double E, double nu, double mu, double mu_r, double e)
+{
+    dem_material m;
+    memset(&m, 0, sizeof m);
+    m.youngs_modulus = E; m.poisson_ratio = nu; m.friction = mu; m.rolling_friction = mu_r;
+    m.restitution = e; m.damping = -1.0;
+    return m;
+}
+
+static inline dem_world *test_world(dem_contact_law law, double dt, const double g[3], double half)
+{
+    dem_world *w = NULL;
+    TRY(w, dem_world_create(&w));
+    dem_config c;
+    dem_config_default(&c);
+    c.contact_law = law;
+    c.dt = dt;
+    for (int k = 0; k < 3; ++k) {
+        c.gravity[k] = g ? g[k] : 0.0;
+        c.domain_lo[k] = -half;
+        c.domain_hi[k] = half;
+    }
+    TRY(w, dem_world_configure(w, &c));
+    return w;
+}
+
+static inline dem_particle test_particle(double x, double y, double z, double vx, double vy, double vz,
+                                  double a, double rho, int mat)
+{
+    dem_particle p;
+    memset(&p, 0, sizeof p);
+    p.id = -1;
+    p.x[0] = x; p.x[1] = y; p.x[2] = z;
+    p.v[0] = vx; p.v[1] = vy; p.v[2] = vz;
+    p.radius = a; p.density = rho; p.material = mat;
+    return p;
+}
+
+#endif
