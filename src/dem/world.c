@@ -432,6 +432,7 @@ dem_status dem_world_add_particles(dem_world *w, size_t n, const dem_particle *p
     for (size_t i = 0; i < n; ++i) {
         s = dem_append_particle(w, &p[i]);
         if (s) return s;
+        w->inserted++;
     }
     return DEM_OK;
 }
