@@ -1,34 +1,536 @@
 /*---------------------------------------------------------------------------*\
-  demFoam DEM core - save/restore and pack/unpack (placeholder).
+  demFoam DEM core - state files (save/restore), particle packing for
+  domain decomposition (pack/unpack), ghosts.
+
+  State file (binary, native byte order, checked on read):
+      "DEMSTATE" | uint32 version | uint32 0x01020304 | uint32 sizeof(double)
+      | sections in the fixed order of save_world()
+  Everything that influences later steps is stored: configuration,
+  materials, all particle arrays in storage order, the neighbour list with
+  its tangential history and wall-contact history (so that force summation
+  order - and therefore every bit - is the same after a restore), walls,
+  inlets (with owed amounts and pre-drawn sizes), outlet totals, removal
+  records, RNG state, time and step.
 \*---------------------------------------------------------------------------*/
 #include "dem_private.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DEM_STATE_VERSION 1u
+static const char state_magic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', 'E'};
+
+typedef struct { FILE *f; int bad; } wio;
+
+static void put(wio *o, const void *p, size_t bytes)
+{
+    if (o->bad || bytes == 0) return;
+    if (fwrite(p, 1, bytes, o->f) != bytes) o->bad = 1;
+}
+static void get(wio *o, void *p, size_t bytes)
+{
+    if (o->bad || bytes == 0) return;
+    if (fread(p, 1, bytes, o->f) != bytes) o->bad = 1;
+}
+#define PUT(o, x) put((o), &(x), sizeof(x))
+#define GET(o, x) get((o), &(x), sizeof(x))
+
+static void save_world(wio *o, const dem_world *w)
+{
+    uint32_t ver = DEM_STATE_VERSION, endian = 0x01020304u, sd = (uint32_t)sizeof(double);
+    put(o, state_magic, sizeof state_magic);
+    PUT(o, ver); PUT(o, endian); PUT(o, sd);
+    PUT(o, w->cfg);
+    PUT(o, w->nmat);
+    put(o, w->mat, (size_t)w->nmat * sizeof *w->mat);
+    uint64_t n = w->n, ng = w->ng;
+    size_t np = w->n + w->ng;
+    PUT(o, n); PUT(o, ng); PUT(o, w->next_id); PUT(o, w->have_ext);
+    put(o, w->id, np * sizeof(int64_t));
+    put(o, w->x, 3 * np * sizeof(double)); put(o, w->v, 3 * np * sizeof(double));
+    put(o, w->w, 3 * np * sizeof(double)); put(o, w->f, 3 * np * sizeof(double));
+    put(o, w->t, 3 * np * sizeof(double));
+    put(o, w->rad, np * sizeof(double)); put(o, w->mass, np * sizeof(double));
+    put(o, w->rho, np * sizeof(double)); put(o, w->mat_of, np * sizeof(int));
+    put(o, w->x0, 3 * np * sizeof(float)); put(o, w->list_index, np * sizeof(int));
+    if (w->have_ext) {
+        put(o, w->fext, 3 * np * sizeof(double)); put(o, w->text, 3 * np * sizeof(double));
+        put(o, w->K, np * sizeof(double)); put(o, w->uf, 3 * np * sizeof(double));
+        put(o, w->J, 3 * np * sizeof(double));
+    }
+    /* neighbour list */
+    uint64_t nrows = w->nb_off ? w->nrows : 0, nnb = w->nnb, nwc = w->nwc;
+    PUT(o, w->list_valid); PUT(o, nrows); PUT(o, nnb); PUT(o, nwc);
+    PUT(o, w->skin); PUT(o, w->amax); PUT(o, w->cutoff); PUT(o, w->shift);
+    PUT(o, w->t_build); PUT(o, w->nbuilds);
+    if (nrows) {
+        put(o, w->nb_off, (nrows + 1) * sizeof(int));
+        put(o, w->nb_j, nnb * sizeof(int)); put(o, w->nb_s, nnb);
+        put(o, w->nb_h, 3 * nnb * sizeof(double));
+        int has_wc = w->wc_off != NULL;
+        PUT(o, has_wc);
+        if (has_wc) {
+            put(o, w->wc_off, (nrows + 1) * sizeof(int));
+            put(o, w->wc_wall, nwc * sizeof(int)); put(o, w->wc_tri, nwc * sizeof(int));
+            put(o, w->wc_h, 3 * nwc * sizeof(double));
+        }
+    }
+    uint64_t npend = w->npend, nwpend = w->nwpend;
+    PUT(o, npend); put(o, w->pend, npend * sizeof *w->pend);
+    PUT(o, nwpend); put(o, w->wpend, nwpend * sizeof *w->wpend);
+    /* walls */
+    PUT(o, w->nwalls); PUT(o, w->nplanes); PUT(o, w->nmeshes);
+    put(o, w->wall_kind, (size_t)w->nwalls * sizeof(int));
+    put(o, w->wall_index, (size_t)w->nwalls * sizeof(int));
+    put(o, w->planes, (size_t)w->nplanes * sizeof *w->planes);
+    for (int k = 0; k < w->nmeshes; ++k) {
+        const dem_mesh *m = &w->meshes[k];
+        uint64_t nv = m->nv, nt = m->ntri;
+        PUT(o, nv); PUT(o, nt);
+        put(o, m->v0, 3 * nv * sizeof(double)); put(o, m->tri, 3 * nt * sizeof(int));
+        put(o, m->nrm, 3 * nt * sizeof(double));
+        PUT(o, m->vel); PUT(o, m->t0); PUT(o, m->material); PUT(o, m->wall);
+    }
+    /* time, rng, inlets, outlets, records, counters */
+    PUT(o, w->time); PUT(o, w->step); PUT(o, w->rng);
+    PUT(o, w->ninlets);
+    for (int k = 0; k < w->ninlets; ++k) {
+        dem_inlet in = w->inlets[k];
+        in.poly = NULL;
+        PUT(o, in);
+        put(o, w->inlets[k].poly, 3 * in.nv * sizeof(double));
+    }
+    PUT(o, w->noutlets);
+    put(o, w->outlets, (size_t)w->noutlets * sizeof *w->outlets);
+    uint64_t nrec = w->nrec;
+    PUT(o, nrec); put(o, w->rec, nrec * sizeof *w->rec);
+    PUT(o, w->inserted); PUT(o, w->removed); PUT(o, w->reorders);
+    PUT(o, w->max_overlap);
+    uint64_t pc = w->pair_contacts, wc = w->wall_contacts;
+    PUT(o, pc); PUT(o, wc); PUT(o, w->forces_valid);
+}
 
 dem_status dem_world_save(const dem_world *w, const char *path)
 {
     if (!w || !path) return DEM_ERR_ARG;
-    return DEM_FAIL(w, DEM_ERR_STATE, "save to '%s': not implemented yet", path);
+    FILE *f = fopen(path, "wb");
+    if (!f) return DEM_FAIL(w, DEM_ERR_IO, "save: cannot open '%s' for writing", path);
+    wio o = {f, 0};
+    save_world(&o, w);
+    if (fclose(f) != 0) o.bad = 1;
+    if (o.bad) return DEM_FAIL(w, DEM_ERR_IO, "save: write error on '%s'", path);
+    return DEM_OK;
 }
+
+#define CHECK_ALLOC(p) do { if (!(p)) { st = DEM_ERR_NOMEM; goto fail; } } while (0)
+
+static dem_status load_world(wio *o, dem_world *w, const char *path, dem_world *err)
+{
+    dem_status st = DEM_OK;
+    char magic[8];
+    uint32_t ver = 0, endian = 0, sd = 0;
+    get(o, magic, sizeof magic);
+    GET(o, ver); GET(o, endian); GET(o, sd);
+    if (o->bad || memcmp(magic, state_magic, sizeof magic) != 0)
+        return DEM_FAIL(err, DEM_ERR_FORMAT, "restore: '%s' is not a demFoam DEM state file", path);
+    if (ver != DEM_STATE_VERSION || endian != 0x01020304u || sd != sizeof(double))
+        return DEM_FAIL(err, DEM_ERR_FORMAT, "restore: '%s' has version %u (byte-order mark 0x%08x, "
+                        "double %u bytes); this library reads version %u, native byte order",
+                        path, ver, endian, sd, DEM_STATE_VERSION);
+    GET(o, w->cfg);
+    GET(o, w->nmat);
+    if (o->bad || w->nmat < 0 || w->nmat > 1000000) goto bad;
+    w->capmat = w->nmat;
+    if (w->nmat) { w->mat = malloc((size_t)w->nmat * sizeof *w->mat); CHECK_ALLOC(w->mat); }
+    get(o, w->mat, (size_t)w->nmat * sizeof *w->mat);
+    w->pairs_dirty = 1;
+    uint64_t n = 0, ng = 0;
+    GET(o, n); GET(o, ng); GET(o, w->next_id); GET(o, w->have_ext);
+    if (o->bad || n > ((uint64_t)1 << 40) || ng > ((uint64_t)1 << 40)) goto bad;
+    size_t np = (size_t)(n + ng);
+    int have_ext = w->have_ext;
+    w->have_ext = 0;
+    if ((st = dem_reserve(w, np > 64 ? np : 64))) goto fail;
+    if (have_ext && (st = dem_ext_alloc(w))) goto fail;
+    w->n = (size_t)n; w->ng = (size_t)ng;
+    get(o, w->id, np * sizeof(int64_t));
+    get(o, w->x, 3 * np * sizeof(double)); get(o, w->v, 3 * np * sizeof(double));
+    get(o, w->w, 3 * np * sizeof(double)); get(o, w->f, 3 * np * sizeof(double));
+    get(o, w->t, 3 * np * sizeof(double));
+    get(o, w->rad, np * sizeof(double)); get(o, w->mass, np * sizeof(double));
+    get(o, w->rho, np * sizeof(double)); get(o, w->mat_of, np * sizeof(int));
+    get(o, w->x0, 3 * np * sizeof(float)); get(o, w->list_index, np * sizeof(int));
+    if (have_ext) {
+        get(o, w->fext, 3 * np * sizeof(double)); get(o, w->text, 3 * np * sizeof(double));
+        get(o, w->K, np * sizeof(double)); get(o, w->uf, 3 * np * sizeof(double));
+        get(o, w->J, 3 * np * sizeof(double));
+    }
+    uint64_t nrows = 0, nnb = 0, nwc = 0;
+    GET(o, w->list_valid); GET(o, nrows); GET(o, nnb); GET(o, nwc);
+    GET(o, w->skin); GET(o, w->amax); GET(o, w->cutoff); GET(o, w->shift);
+    GET(o, w->t_build); GET(o, w->nbuilds);
+    if (o->bad || nrows > ((uint64_t)1 << 40) || nnb > ((uint64_t)1 << 40) || nwc > ((uint64_t)1 << 40)) goto bad;
+    w->nrows = (size_t)nrows; w->nnb = (size_t)nnb; w->nwc = (size_t)nwc;
+    if (nrows) {
+        w->caprows = (size_t)nrows + 1;
+        w->nb_off = malloc(w->caprows * sizeof(int)); CHECK_ALLOC(w->nb_off);
+        w->capnb = (size_t)nnb + 1;
+        w->nb_j = malloc(w->capnb * sizeof(int)); CHECK_ALLOC(w->nb_j);
+        w->nb_s = malloc(w->capnb); CHECK_ALLOC(w->nb_s);
+        w->nb_h = malloc(3 * w->capnb * sizeof(double)); CHECK_ALLOC(w->nb_h);
+        get(o, w->nb_off, (nrows + 1) * sizeof(int));
+        get(o, w->nb_j, nnb * sizeof(int)); get(o, w->nb_s, nnb);
+        get(o, w->nb_h, 3 * nnb * sizeof(double));
+        int has_wc = 0;
+        GET(o, has_wc);
+        if (has_wc) {
+            w->capwc = (size_t)nwc + 1;
+            w->wc_off = malloc(((size_t)nrows + 1) * sizeof(int)); CHECK_ALLOC(w->wc_off);
+            w->wc_wall = malloc(w->capwc * sizeof(int)); CHECK_ALLOC(w->wc_wall);
+            w->wc_tri = malloc(w->capwc * sizeof(int)); CHECK_ALLOC(w->wc_tri);
+            w->wc_h = malloc(3 * w->capwc * sizeof(double)); CHECK_ALLOC(w->wc_h);
+            get(o, w->wc_off, (nrows + 1) * sizeof(int));
+            get(o, w->wc_wall, nwc * sizeof(int)); get(o, w->wc_tri, nwc * sizeof(int));
+            get(o, w->wc_h, 3 * nwc * sizeof(double));
+        }
+    }
+    uint64_t npend = 0, nwpend = 0;
+    GET(o, npend);
+    if (o->bad || npend > ((uint64_t)1 << 40)) goto bad;
+    w->cappend = (size_t)npend; w->npend = (size_t)npend;
+    if (npend) { w->pend = malloc((size_t)npend * sizeof *w->pend); CHECK_ALLOC(w->pend); }
+    get(o, w->pend, (size_t)npend * sizeof *w->pend);
+    GET(o, nwpend);
+    if (o->bad || nwpend > ((uint64_t)1 << 40)) goto bad;
+    w->capwpend = (size_t)nwpend; w->nwpend = (size_t)nwpend;
+    if (nwpend) { w->wpend = malloc((size_t)nwpend * sizeof *w->wpend); CHECK_ALLOC(w->wpend); }
+    get(o, w->wpend, (size_t)nwpend * sizeof *w->wpend);
+    GET(o, w->nwalls); GET(o, w->nplanes); GET(o, w->nmeshes);
+    if (o->bad || w->nwalls < 0 || w->nplanes < 0 || w->nmeshes < 0 || w->nwalls != w->nplanes + w->nmeshes) goto bad;
+    if (w->nwalls) {
+        w->wall_kind = malloc((size_t)w->nwalls * sizeof(int)); CHECK_ALLOC(w->wall_kind);
+        w->wall_index = malloc((size_t)w->nwalls * sizeof(int)); CHECK_ALLOC(w->wall_index);
+    }
+    get(o, w->wall_kind, (size_t)w->nwalls * sizeof(int));
+    get(o, w->wall_index, (size_t)w->nwalls * sizeof(int));
+    if (w->nplanes) { w->planes = malloc((size_t)w->nplanes * sizeof *w->planes); CHECK_ALLOC(w->planes); }
+    get(o, w->planes, (size_t)w->nplanes * sizeof *w->planes);
+    if (w->nmeshes) { w->meshes = calloc((size_t)w->nmeshes, sizeof *w->meshes); CHECK_ALLOC(w->meshes); }
+    for (int k = 0; k < w->nmeshes; ++k) {
+        dem_mesh *m = &w->meshes[k];
+        uint64_t nv = 0, nt = 0;
+        GET(o, nv); GET(o, nt);
+        if (o->bad || nv > ((uint64_t)1 << 40) || nt > ((uint64_t)1 << 40)) goto bad;
+        m->nv = (size_t)nv; m->ntri = (size_t)nt;
+        m->v0 = malloc(3 * m->nv * sizeof(double) + 1); CHECK_ALLOC(m->v0);
+        m->tri = malloc(3 * m->ntri * sizeof(int) + 1); CHECK_ALLOC(m->tri);
+        m->nrm = malloc(3 * m->ntri * sizeof(double) + 1); CHECK_ALLOC(m->nrm);
+        get(o, m->v0, 3 * m->nv * sizeof(double)); get(o, m->tri, 3 * m->ntri * sizeof(int));
+        get(o, m->nrm, 3 * m->ntri * sizeof(double));
+        GET(o, m->vel); GET(o, m->t0); GET(o, m->material); GET(o, m->wall);
+        size_t base = w->ntri_all;
+        int *tm = realloc(w->tri_mesh, (base + m->ntri + 1) * sizeof(int)); CHECK_ALLOC(tm); w->tri_mesh = tm;
+        int *tl = realloc(w->tri_local, (base + m->ntri + 1) * sizeof(int)); CHECK_ALLOC(tl); w->tri_local = tl;
+        for (size_t t = 0; t < m->ntri; ++t) { w->tri_mesh[base + t] = k; w->tri_local[base + t] = (int)t; }
+        w->ntri_all += m->ntri;
+    }
+    GET(o, w->time); GET(o, w->step); GET(o, w->rng);
+    GET(o, w->ninlets);
+    if (o->bad || w->ninlets < 0 || w->ninlets > 1000000) goto bad;
+    if (w->ninlets) { w->inlets = calloc((size_t)w->ninlets, sizeof *w->inlets); CHECK_ALLOC(w->inlets); }
+    for (int k = 0; k < w->ninlets; ++k) {
+        dem_inlet *in = &w->inlets[k];
+        GET(o, *in);
+        in->poly = NULL;
+        if (o->bad || in->nv > 1000000) goto bad;
+        in->poly = malloc(3 * in->nv * sizeof(double) + 1); CHECK_ALLOC(in->poly);
+        get(o, in->poly, 3 * in->nv * sizeof(double));
+    }
+    GET(o, w->noutlets);
+    if (o->bad || w->noutlets < 0 || w->noutlets > 1000000) goto bad;
+    if (w->noutlets) { w->outlets = malloc((size_t)w->noutlets * sizeof *w->outlets); CHECK_ALLOC(w->outlets); }
+    get(o, w->outlets, (size_t)w->noutlets * sizeof *w->outlets);
+    uint64_t nrec = 0;
+    GET(o, nrec);
+    if (o->bad || nrec > ((uint64_t)1 << 40)) goto bad;
+    w->nrec = w->caprec = (size_t)nrec;
+    if (nrec) { w->rec = malloc((size_t)nrec * sizeof *w->rec); CHECK_ALLOC(w->rec); }
+    get(o, w->rec, (size_t)nrec * sizeof *w->rec);
+    GET(o, w->inserted); GET(o, w->removed); GET(o, w->reorders);
+    GET(o, w->max_overlap);
+    uint64_t pc = 0, wc = 0;
+    GET(o, pc); GET(o, wc); GET(o, w->forces_valid);
+    w->pair_contacts = (size_t)pc; w->wall_contacts = (size_t)wc;
+    if (o->bad) goto bad;
+    {
+        char extra;
+        if (fread(&extra, 1, 1, o->f) == 1) goto bad; /* trailing data */
+    }
+    return DEM_OK;
+bad:
+    return DEM_FAIL(err, DEM_ERR_FORMAT, "restore: '%s' is truncated or corrupt", path);
+fail:
+    return DEM_FAIL(err, st, "restore: '%s': out of memory", path);
+}
+
 dem_status dem_world_restore(dem_world *w, const char *path)
 {
     if (!w || !path) return DEM_ERR_ARG;
-    return DEM_FAIL(w, DEM_ERR_STATE, "restore from '%s': not implemented yet", path);
+    FILE *f = fopen(path, "rb");
+    if (!f) return DEM_FAIL(w, DEM_ERR_IO, "restore: cannot open '%s' for reading", path);
+    dem_world *nw = NULL;
+    dem_status st = dem_world_create(&nw);
+    if (st) { fclose(f); return DEM_FAIL(w, st, "restore: out of memory"); }
+    wio o = {f, 0};
+    st = load_world(&o, nw, path, w);
+    fclose(f);
+    if (st) { dem_world_destroy(&nw); return st; }
+    /* swap contents, keep the logger */
+    dem_log_fn lf = w->log; void *lu = w->log_user;
+    dem_world tmp = *w;
+    *w = *nw;
+    *nw = tmp;
+    w->log = lf; w->log_user = lu;
+    w->err[0] = '\0';
+    dem_world_destroy(&nw);
+    return dem_pairs_update(w);
 }
+
+/*--- pack / unpack ------------------------------------------------------------------*/
+/* Layout: uint32 magic | uint32 npair | uint32 nwall | uint32 flags |
+ *         int64 id | double x,v,w,f,t (15) | radius, mass, density |
+ *         int material | int pad | double fext,text (6), K, u (3), J (3) |
+ *         npair x (int64 partner id, double h[3])  (h oriented as seen from this particle)
+ *         nwall x (int wall, int tri, double h[3])                                      */
+#define PACK_MAGIC 0x444d5031u /* "DMP1" */
+typedef struct {
+    uint32_t magic, npair, nwall, flags;
+    int64_t id;
+    double xvwft[15], rad, mass, rho;
+    int32_t mat, pad;
+    double ext[13];
+} pack_head;
+typedef struct { int64_t partner; double h[3]; } pack_pair;
+typedef struct { int32_t wall, tri; double h[3]; } pack_wall;
+
+/* row -> particle index (inverse of list_index); NULL if identity */
+static int *row_owner(const dem_world *w)
+{
+    if (w->list_valid) return NULL;
+    int *inv = malloc((w->nrows + 1) * sizeof(int));
+    if (!inv) return NULL;
+    for (size_t r = 0; r < w->nrows; ++r) inv[r] = -1;
+    for (size_t p = 0; p < w->n + w->ng; ++p) {
+        int r = w->list_index[p];
+        if (r >= 0 && (size_t)r < w->nrows) inv[r] = (int)p;
+    }
+    return inv;
+}
+
 dem_status dem_world_pack_particle(const dem_world *w, size_t index, void *buf, size_t *size)
 {
-    (void)buf; (void)size;
-    if (!w) return DEM_ERR_ARG;
-    return DEM_FAIL(w, DEM_ERR_STATE, "pack particle %zu: not implemented yet", index);
+    if (!w || !size) return DEM_ERR_ARG;
+    if (index >= w->n + w->ng)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "pack: index %zu; %zu particles", index, w->n + w->ng);
+    int *inv = row_owner(w);
+    if (!w->list_valid && !inv && w->nrows)
+        return DEM_FAIL(w, DEM_ERR_NOMEM, "pack: row map");
+#define OWNER(r) (inv ? inv[(r)] : (int)(r))
+    int row = w->nb_off ? w->list_index[index] : -1;
+    if ((size_t)row >= w->nrows) row = -1;
+    uint32_t npair = 0, nwall = 0;
+    pack_head hd;
+    memset(&hd, 0, sizeof hd);
+    /* count */
+    for (int pass = 0; pass < 2; ++pass) {
+        char *out = buf ? (char *)buf + sizeof hd : NULL;
+        npair = nwall = 0;
+        if (row >= 0) {
+            for (size_t r = 0; r < w->nrows; ++r) {
+                for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
+                    const double *h = w->nb_h + 3 * (size_t)k;
+                    if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+                    int other, sign;
+                    if ((int)r == row) { other = w->nb_j[k]; sign = 1; }
+                    else if (w->nb_j[k] == row) { other = (int)r; sign = -1; }
+                    else continue;
+                    int po = OWNER(other);
+                    if (po < 0) continue;
+                    if (pass == 1 && out) {
+                        pack_pair pp;
+                        pp.partner = w->id[po];
+                        for (int c = 0; c < 3; ++c) pp.h[c] = sign * h[c];
+                        memcpy(out + (size_t)npair * sizeof pp, &pp, sizeof pp);
+                    }
+                    npair++;
+                }
+            }
+            if (w->wc_off) {
+                char *wout = out ? out + (size_t)npair * sizeof(pack_pair) : NULL;
+                for (int k = w->wc_off[row]; k < w->wc_off[row + 1]; ++k) {
+                    const double *h = w->wc_h + 3 * (size_t)k;
+                    if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+                    if (pass == 1 && wout) {
+                        pack_wall pw;
+                        pw.wall = w->wc_wall[k]; pw.tri = w->wc_tri[k];
+                        memcpy(pw.h, h, sizeof pw.h);
+                        memcpy(wout + (size_t)nwall * sizeof pw, &pw, sizeof pw);
+                    }
+                    nwall++;
+                }
+            }
+        }
+        if (pass == 0) {
+            size_t need = sizeof hd + npair * sizeof(pack_pair) + nwall * sizeof(pack_wall);
+            if (!buf) { *size = need; free(inv); return DEM_OK; }
+            if (*size < need) {
+                free(inv);
+                return DEM_FAIL(w, DEM_ERR_RANGE, "pack: buffer of %zu bytes, need %zu", *size, need);
+            }
+            *size = need;
+        }
+    }
+#undef OWNER
+    free(inv);
+    hd.magic = PACK_MAGIC; hd.npair = npair; hd.nwall = nwall;
+    hd.id = w->id[index];
+    for (int c = 0; c < 3; ++c) {
+        hd.xvwft[c] = w->x[3 * index + c]; hd.xvwft[3 + c] = w->v[3 * index + c];
+        hd.xvwft[6 + c] = w->w[3 * index + c]; hd.xvwft[9 + c] = w->f[3 * index + c];
+        hd.xvwft[12 + c] = w->t[3 * index + c];
+    }
+    hd.rad = w->rad[index]; hd.mass = w->mass[index]; hd.rho = w->rho[index]; hd.mat = w->mat_of[index];
+    if (w->have_ext) {
+        hd.flags = 1;
+        for (int c = 0; c < 3; ++c) {
+            hd.ext[c] = w->fext[3 * index + c]; hd.ext[3 + c] = w->text[3 * index + c];
+            hd.ext[7 + c] = w->uf[3 * index + c]; hd.ext[10 + c] = w->J[3 * index + c];
+        }
+        hd.ext[6] = w->K[index];
+    }
+    memcpy(buf, &hd, sizeof hd);
+    return DEM_OK;
 }
+
 dem_status dem_world_unpack_particle(dem_world *w, const void *buf, size_t size, int ghost)
 {
-    (void)buf; (void)ghost;
-    if (!w) return DEM_ERR_ARG;
-    return DEM_FAIL(w, DEM_ERR_STATE, "unpack (%zu bytes): not implemented yet", size);
+    if (!w || !buf) return DEM_ERR_ARG;
+    pack_head hd;
+    if (size < sizeof hd) return DEM_FAIL(w, DEM_ERR_FORMAT, "unpack: %zu bytes, header needs %zu", size, sizeof hd);
+    memcpy(&hd, buf, sizeof hd);
+    size_t need = sizeof hd + hd.npair * sizeof(pack_pair) + hd.nwall * sizeof(pack_wall);
+    if (hd.magic != PACK_MAGIC || size < need)
+        return DEM_FAIL(w, DEM_ERR_FORMAT, "unpack: bad magic 0x%08x or size %zu < %zu", hd.magic, size, need);
+    if (hd.mat < 0 || hd.mat >= w->nmat)
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "unpack: particle id %lld has material %d; %d defined",
+                        (long long)hd.id, hd.mat, w->nmat);
+    dem_status s;
+    size_t i;
+    if (!ghost) {
+        dem_particle p;
+        memset(&p, 0, sizeof p);
+        p.id = hd.id;
+        for (int c = 0; c < 3; ++c) { p.x[c] = hd.xvwft[c]; p.v[c] = hd.xvwft[3 + c]; p.omega[c] = hd.xvwft[6 + c]; }
+        p.radius = hd.rad; p.density = hd.rho; p.material = hd.mat;
+        if ((s = dem_append_particle(w, &p))) return s;
+        i = w->n - 1;
+    } else {
+        for (int c = 0; c < 3; ++c)
+            if (!isfinite(hd.xvwft[c]) || !isfinite(hd.xvwft[3 + c]))
+                return DEM_FAIL(w, DEM_ERR_NAN, "unpack: ghost id %lld has non-finite state", (long long)hd.id);
+        if (!(hd.rad > 0)) return DEM_FAIL(w, DEM_ERR_RANGE, "unpack: ghost radius %g", hd.rad);
+        if ((s = dem_reserve(w, w->n + w->ng + 1))) return s;
+        i = w->n + w->ng;
+        w->id[i] = hd.id;
+        for (int c = 0; c < 3; ++c) {
+            w->x[3 * i + c] = hd.xvwft[c]; w->v[3 * i + c] = hd.xvwft[3 + c]; w->w[3 * i + c] = hd.xvwft[6 + c];
+            w->x0[3 * i + c] = (float)hd.xvwft[c];
+        }
+        w->rad[i] = hd.rad; w->rho[i] = hd.rho; w->mat_of[i] = hd.mat;
+        w->list_index[i] = -1;
+        w->ng++;
+        w->list_valid = 0;
+        w->reorders++;
+        if (hd.id >= w->next_id) w->next_id = hd.id + 1;
+    }
+    w->mass[i] = hd.mass;
+    for (int c = 0; c < 3; ++c) { w->f[3 * i + c] = hd.xvwft[9 + c]; w->t[3 * i + c] = hd.xvwft[12 + c]; }
+    if (w->have_ext) {
+        for (int c = 0; c < 3; ++c) {
+            w->fext[3 * i + c] = hd.ext[c]; w->text[3 * i + c] = hd.ext[3 + c];
+            w->uf[3 * i + c] = hd.ext[7 + c]; w->J[3 * i + c] = hd.ext[10 + c];
+        }
+        w->K[i] = hd.ext[6];
+    }
+    const char *p = (const char *)buf + sizeof hd;
+    for (uint32_t k = 0; k < hd.npair; ++k) {
+        pack_pair pp;
+        memcpy(&pp, p + (size_t)k * sizeof pp, sizeof pp);
+        if (w->npend == w->cappend) {
+            size_t nc = w->cappend ? 2 * w->cappend : 64;
+            dem_pending *q = realloc(w->pend, nc * sizeof *q);
+            if (!q) return DEM_FAIL(w, DEM_ERR_NOMEM, "unpack: pending contacts");
+            w->pend = q; w->cappend = nc;
+        }
+        dem_pending *d = &w->pend[w->npend++];
+        d->ia = hd.id; d->ib = pp.partner;
+        memcpy(d->h, pp.h, sizeof d->h);
+    }
+    p += (size_t)hd.npair * sizeof(pack_pair);
+    for (uint32_t k = 0; k < hd.nwall && !ghost; ++k) {
+        pack_wall pw;
+        memcpy(&pw, p + (size_t)k * sizeof pw, sizeof pw);
+        if (w->nwpend == w->capwpend) {
+            size_t nc = w->capwpend ? 2 * w->capwpend : 64;
+            dem_wpending *q = realloc(w->wpend, nc * sizeof *q);
+            if (!q) return DEM_FAIL(w, DEM_ERR_NOMEM, "unpack: pending wall contacts");
+            w->wpend = q; w->capwpend = nc;
+        }
+        dem_wpending *d = &w->wpend[w->nwpend++];
+        d->id = hd.id; d->wall = pw.wall; d->tri = pw.tri;
+        memcpy(d->h, pw.h, sizeof d->h);
+    }
+    return DEM_OK;
 }
+
 dem_status dem_world_clear_ghosts(dem_world *w)
 {
     if (!w) return DEM_ERR_ARG;
+    if (w->ng == 0) return DEM_OK;
+    /* keep the history of owned-ghost contacts by id (a ghost unpacked
+       again with the same id gets it back at the next list build) */
+    if (w->nb_off && w->nrows) {
+        int *inv = malloc((w->nrows + 1) * sizeof(int));
+        if (!inv) return DEM_FAIL(w, DEM_ERR_NOMEM, "clear_ghosts: row map");
+        for (size_t r = 0; r < w->nrows; ++r) inv[r] = -1;
+        for (size_t q = 0; q < w->n + w->ng; ++q) {
+            int r = w->list_index[q];
+            if (r >= 0 && (size_t)r < w->nrows) inv[r] = (int)q;
+        }
+        for (size_t r = 0; r < w->nrows; ++r) {
+            for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
+                const double *h = w->nb_h + 3 * (size_t)k;
+                if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+                int a = inv[r], b = inv[w->nb_j[k]];
+                if (a < 0 || b < 0) continue;
+                if ((size_t)a < w->n && (size_t)b < w->n) continue;
+                if (w->npend == w->cappend) {
+                    size_t nc = w->cappend ? 2 * w->cappend : 64;
+                    dem_pending *q = realloc(w->pend, nc * sizeof *q);
+                    if (!q) { free(inv); return DEM_FAIL(w, DEM_ERR_NOMEM, "clear_ghosts"); }
+                    w->pend = q; w->cappend = nc;
+                }
+                dem_pending *d = &w->pend[w->npend++];
+                d->ia = w->id[a]; d->ib = w->id[b];
+                memcpy(d->h, h, sizeof d->h);
+            }
+        }
+        free(inv);
+    }
+    for (size_t i = w->n; i < w->n + w->ng; ++i) w->list_index[i] = -1;
     w->ng = 0;
     w->list_valid = 0;
+    w->reorders++;
     return DEM_OK;
 }

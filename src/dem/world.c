@@ -418,7 +418,9 @@ dem_status dem_append_particle(dem_world *w, const dem_particle *p)
     }
     w->n++;
     w->list_valid = 0;
-    w->forces_valid = 0;
+    /* forces_valid is kept: the stored forces of the others stay those of the
+       last evaluation (recomputing them here would change the damping
+       velocities); the new particle starts with f = 0 until the next one */
     w->reorders++;
     return DEM_OK;
 }
