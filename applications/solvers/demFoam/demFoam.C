@@ -12,10 +12,11 @@ Description
     section 4 (constant/demProperties, keyword formulation).
 
     Fluid momentum equation (kinematic, p = p/rho_f):
-        ddt(eps, U) + div(eps phi, U) + c divDevReff(U)
-          = -c grad p + eps g + S/rho_f,
-    c = 1 (sets I, III) or eps (set II); S, the particles' momentum source,
-    holds -F of the set with the drag semi-implicit (demCoupling::SU).
+        ddt(eps, U) + div(eps phi, U) + c_tau divDevReff(U)
+          = -c_p grad p + eps g + S/rho_f,
+    c_p = eps (sets I, II) or 1 (set III), c_tau = eps (set II) or 1; S, the
+    particles' momentum source, holds -F of the set with the drag
+    semi-implicit (see couplingFormulation.H for set I's pressure part).
     Turbulence models (laminar, RAS, LES), fvOptions and function objects
     are selected as usual.
 

@@ -100,6 +100,8 @@ Foam::demCoupling::demCoupling
             dimensionedVector(dimForce/dimVolume, Zero)),
     eta_(fieldIO(mesh, "eta", true), mesh, dimensionedScalar(dimless, Zero)),
     pCoeff_(fieldIO(mesh, "pressureCoeff", false), mesh,
+            dimensionedScalar("one", dimless, 1.0), "zeroGradient"),
+    tauCoeff_(fieldIO(mesh, "viscousCoeff", false), mesh,
             dimensionedScalar("one", dimless, 1.0), "zeroGradient")
 {
     const word scheme(dict_.getOrDefault<word>("dragScheme", "perParticle"));
@@ -803,14 +805,9 @@ void Foam::demCoupling::computeVoidage()
     }
     Up_.correctBoundaryConditions();
 
-    if (formulation_->pressureTimesVoidage())
-    {
-        pCoeff_ = eps_;
-    }
-    else
-    {
-        pCoeff_ = dimensionedScalar("one", dimless, 1.0);
-    }
+    const dimensionedScalar one("one", dimless, 1.0);
+    if (formulation_->pressureTimesVoidage()) pCoeff_ = eps_; else pCoeff_ = one;
+    if (formulation_->viscousTimesVoidage()) tauCoeff_ = eps_; else tauCoeff_ = one;
 }
 
 
@@ -1021,18 +1018,23 @@ void Foam::demCoupling::evolve
     }
     bedEta_ = etaN ? etaSum/etaN : 0;
 
-    // fluid momentum source S = -F + (1 - c)(grad p - div tau); c from the
-    // solid fraction of the same weights (exact, unclipped)
-    const bool setII = form.pressureTimesVoidage();
+    // fluid momentum source S = -F + (1 - c_p) grad p - (1 - c_tau) div tau,
+    // 1 - c from the solid fraction of the same weights (exact, unclipped)
+    const bool pEps = form.pressureTimesVoidage();
+    const bool tauEps = form.viscousTimesVoidage();
     vector sumFluid(Zero);
     forAll(Fc, c)
     {
         F_[c] = Fc[c]/V[c];
         Kc_[c] = Kcell[c]/V[c];
         vector S = -F_[c];
-        if (setII)
+        if (pEps)
         {
-            S += (1 - epsRaw_[c])*rhof_*(gradPc[c] - divTc[c]);
+            S += (1 - epsRaw_[c])*rhof_*gradPc[c];
+        }
+        if (tauEps)
+        {
+            S -= (1 - epsRaw_[c])*rhof_*divTc[c];
         }
         source_[c] = S;
         sumFluid += S*V[c];
@@ -1053,18 +1055,39 @@ void Foam::demCoupling::evolve
 }
 
 
-Foam::tmp<Foam::fvVectorMatrix>
-Foam::demCoupling::SU(volVectorField& U) const
+Foam::tmp<Foam::volScalarField> Foam::demCoupling::Kkin() const
 {
-    const volScalarField::Internal Kkin(Kc_()/rhof_);
-    tmp<fvVectorMatrix> tEqn
+    tmp<volScalarField> tK
     (
-        new fvVectorMatrix(U, dimVolume*dimVelocity/dimTime)
+        new volScalarField
+        (
+            IOobject("Kkin", mesh_.time().timeName(), mesh_),
+            mesh_,
+            dimensionedScalar(dimless/dimTime, Zero),
+            "zeroGradient"
+        )
     );
-    fvVectorMatrix& eqn = tEqn.ref();
-    eqn.diag() -= Kkin.field()*mesh_.V();
-    eqn.source() -=
-        (Kkin.field()*Ucoup_.primitiveField() - F_.primitiveField()/rhof_)
-       *mesh_.V();
-    return tEqn;
+    tK.ref().primitiveFieldRef() = Kc_.primitiveField()/rhof_;
+    tK.ref().correctBoundaryConditions();
+    return tK;
+}
+
+
+Foam::tmp<Foam::volVectorField> Foam::demCoupling::Skin() const
+{
+    tmp<volVectorField> tS
+    (
+        new volVectorField
+        (
+            IOobject("Skin", mesh_.time().timeName(), mesh_),
+            mesh_,
+            dimensionedVector(dimVelocity/dimTime, Zero),
+            "zeroGradient"
+        )
+    );
+    tS.ref().primitiveFieldRef() =
+        (Kc_.primitiveField()*Ucoup_.primitiveField() - F_.primitiveField())
+       /rhof_;
+    tS.ref().correctBoundaryConditions();
+    return tS;
 }
