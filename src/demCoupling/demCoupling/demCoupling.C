@@ -30,6 +30,46 @@ namespace
         );
     }
 
+    // eps boundary types: constraint types kept, fixedValue 1 on the
+    // fluidInletPatches (the given U there is the superficial velocity),
+    // zeroGradient elsewhere
+    Foam::wordList epsPatchTypes
+    (
+        const Foam::fvMesh& mesh,
+        const Foam::dictionary& dict
+    )
+    {
+        using namespace Foam;
+        const wordList inlets
+        (
+            dict.getOrDefault<wordList>("fluidInletPatches", wordList())
+        );
+        const polyBoundaryMesh& bm = mesh.boundaryMesh();
+        for (const word& name : inlets)
+        {
+            if (bm.findPatchID(name) < 0)
+            {
+                FatalIOErrorInFunction(dict)
+                    << "fluidInletPatches entry " << name << " in "
+                    << dict.name() << " is not a patch; patches: "
+                    << bm.names() << exit(FatalIOError);
+            }
+        }
+        wordList types(bm.size(), "zeroGradient");
+        forAll(bm, patchi)
+        {
+            if (polyPatch::constraintType(bm[patchi].type()))
+            {
+                types[patchi] = bm[patchi].type();
+            }
+            else if (inlets.found(bm[patchi].name()))
+            {
+                types[patchi] = "fixedValue";
+            }
+        }
+        return types;
+    }
+
     Foam::vector toVec(const double* a, const Foam::label i)
     {
         return Foam::vector(a[3*i], a[3*i+1], a[3*i+2]);
@@ -83,10 +123,18 @@ Foam::demCoupling::demCoupling
     balanceParticle_(0),
     balanceFluidVec_(Zero),
     balanceParticleVec_(Zero),
+    sumDrag_(Zero),
+    sumGradP_(Zero),
+    sumTau_(Zero),
     solidVolumeMesh_(0),
     solidVolumeParticles_(0),
-    eps_(fieldIO(mesh, "eps", true), mesh, dimensionedScalar("one", dimless, 1.0),
-         "zeroGradient"),
+    eps_
+    (
+        fieldIO(mesh, "eps", true),
+        mesh,
+        dimensionedScalar("one", dimless, 1.0),
+        epsPatchTypes(mesh, dict_)
+    ),
     epsRaw_(fieldIO(mesh, "epsRaw", false), mesh, dimensionedScalar("one", dimless, 1.0)),
     Up_(fieldIO(mesh, "Up", true), mesh, dimensionedVector(dimVelocity, Zero),
         "zeroGradient"),
@@ -956,6 +1004,7 @@ void Foam::demCoupling::evolve
     vectorField Fc(mesh_.nCells(), Zero);
     scalarField Kcell(mesh_.nCells(), 0);
     vector sumParticle(Zero);
+    vector sumDrag(Zero), sumGradP(Zero), sumTau(Zero);
     scalar sumMagParticle = 0;
     scalar etaSum = 0;
     label etaN = 0;
@@ -982,6 +1031,9 @@ void Foam::demCoupling::evolve
         const vector dragRate = toVec(a.drag_impulse, j)/dt;
         const vector fpf = dragRate + fPart[s];
         sumParticle += fpf;
+        sumDrag += dragRate;
+        sumGradP += fGP[s];
+        sumTau += divTauP[s];
         sumMagParticle += mag(fpf);
         const vector exch = dragRate + fExch[s];
 
@@ -1040,6 +1092,9 @@ void Foam::demCoupling::evolve
         sumFluid += S*V[c];
         eta_[c] = wCell[c] > 0 ? etaCell[c]/wCell[c] : 0;
     }
+    sumDrag_ = sumDrag;
+    sumGradP_ = sumGradP;
+    sumTau_ = sumTau;
     balanceFluidVec_ = sumFluid;
     balanceParticleVec_ = sumParticle;
     balanceFluid_ = mag(sumFluid + sumParticle);

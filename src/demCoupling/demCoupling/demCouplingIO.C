@@ -16,6 +16,10 @@ void Foam::demCoupling::report(const bool full) const
 
     if (!full) return;
 
+    Info<< "demCoupling: sum of particle drag " << sumDrag_
+        << ", of pressure-gradient forces " << sumGradP_
+        << ", of viscous forces " << sumTau_ << endl;
+
     Info<< "demCoupling: solid volume: mesh " << solidVolumeMesh_
         << " particles " << solidVolumeParticles_
         << " relDiff "
