@@ -396,21 +396,35 @@ void Foam::demCoupling::addWalls()
         }
         else if (isA<wallPolyPatch>(pp) || extraWalls.found(pp.name()))
         {
+            // fan triangulation about each face centre (robust for the
+            // polygonal faces of polyhedral meshes with collinear points);
+            // degenerate triangles are skipped
             const pointField& lp = pp.localPoints();
             const faceList& lf = pp.localFaces();
-            List<double> verts(3*lp.size());
-            forAll(lp, i)
+            DynamicList<double> verts(3*(lp.size() + lf.size()));
+            for (const point& x : lp)
             {
-                for (direction k = 0; k < 3; ++k) verts[3*i+k] = lp[i][k];
+                verts.append(x.x()); verts.append(x.y()); verts.append(x.z());
             }
             DynamicList<int> tris;
-            for (const face& f : lf)
+            forAll(lf, facei)
             {
-                for (label k = 1; k + 1 < f.size(); ++k)
+                const face& f = lf[facei];
+                const point c = f.centre(lp);
+                const scalar fArea = f.mag(lp);
+                const int ci = int(verts.size()/3);
+                verts.append(c.x()); verts.append(c.y()); verts.append(c.z());
+                forAll(f, k)
                 {
-                    tris.append(f[0]);
-                    tris.append(f[k]);
-                    tris.append(f[k+1]);
+                    const label a = f[k], b = f.nextLabel(k);
+                    const scalar triArea =
+                        0.5*mag((lp[a] - c) ^ (lp[b] - c));
+                    if (triArea > 1e-10*fArea)
+                    {
+                        tris.append(ci);
+                        tris.append(int(a));
+                        tris.append(int(b));
+                    }
                 }
             }
             int id;
@@ -418,7 +432,7 @@ void Foam::demCoupling::addWalls()
             (
                 dem_world_add_trimesh
                 (
-                    world_, lp.size(), verts.cdata(), tris.size()/3,
+                    world_, verts.size()/3, verts.cdata(), tris.size()/3,
                     tris.cdata(), mat, zeroVel, &id
                 ),
                 "dem_world_add_trimesh"
