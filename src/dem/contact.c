@@ -30,7 +30,9 @@ static inline void rotate_history(double *h, const double n[3])
         double h2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
         h[0] -= hn * n[0]; h[1] -= hn * n[1]; h[2] -= hn * n[2];
         double h2n = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-        if (h2n > 0.0) {
+        /* rescale to the old length; skipped when the factor
+           sqrt(1 + hn^2/h2n) rounds to 1 anyway */
+        if (h2n > 0.0 && hn * hn > 1e-17 * h2n) {
             double s = sqrt(h2 / h2n);
             h[0] *= s; h[1] *= s; h[2] *= s;
         }
@@ -38,7 +40,13 @@ static inline void rotate_history(double *h, const double n[3])
 }
 
 /* Hertz-Mindlin [Z] Table 2.  Returns the force on i in F, the elastic
- * normal force |f_cn| in *fel, tangential force in ft. */
+ * normal force |f_cn| in *fel, tangential force in ft.  In terms of the
+ * pair constants (no divisions by material data in the loop):
+ *   f_cn  = (4/3) E* sqrt(R* delta) delta
+ *   f_dn  = -c_n sqrt(8 E*) sqrt(m sqrt(R* delta)) v_n
+ *   mu |f_cn| / delta_t,max = (4/3) E* sqrt(R* delta) / mindlin
+ *   f_dt  = -c_t sqrt(8 E* / mindlin) sqrt(m sqrt(R* delta)) (1 - x)^(1/4) v_t,
+ *           x = |delta_t| / delta_t,max                                   */
 static inline void hm_force(const dem_pair *q, double dt, const double n[3], double delta,
                             const double vc[3], double meff, double rstar, double *h,
                             double F[3], double ft[3], double *fel)
@@ -46,26 +54,33 @@ static inline void hm_force(const dem_pair *q, double dt, const double n[3], dou
     double vn = vc[0] * n[0] + vc[1] * n[1] + vc[2] * n[2];
     double vt[3] = {vc[0] - vn * n[0], vc[1] - vn * n[1], vc[2] - vn * n[2]};
     double sq = sqrt(rstar * delta);
-    double fcn = (4.0 / 3.0) * q->estar * sq * delta;              /* (4/3) E* sqrt(R*) delta^(3/2) */
-    double fn = fcn - q->cn * sqrt(8.0 * meff * q->estar * sq) * vn; /* + c_n (8 m E* sqrt(R* delta))^(1/2) (-v_n) */
+    double fcn = q->k43 * sq * delta;
+    double dn = sqrt(meff * sq);
+    double fn = fcn - q->cn8 * dn * vn;
     ft[0] = ft[1] = ft[2] = 0.0;
     if (q->mu > 0.0) {
         rotate_history(h, n);
         h[0] += vt[0] * dt; h[1] += vt[1] * dt; h[2] += vt[2] * dt;
-        double dtmax = q->mu * q->mindlin * delta;                  /* delta_t,max */
-        double hm = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-        if (hm >= dtmax) {                                          /* Coulomb sliding */
-            double s = dtmax / hm;
+        double dtmax = q->mumind * delta;                           /* delta_t,max */
+        double hm2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+        double kt = q->k43_mind * sq;                               /* mu |f_cn| / delta_t,max */
+        if (hm2 >= dtmax * dtmax) {                                 /* Coulomb sliding */
+            double s = dtmax / sqrt(hm2);
             h[0] *= s; h[1] *= s; h[2] *= s;
-            double c = -q->mu * fcn / dtmax;                        /* -mu |f_cn| h/|h| */
-            ft[0] = c * h[0]; ft[1] = c * h[1]; ft[2] = c * h[2];
+            ft[0] = -kt * h[0]; ft[1] = -kt * h[1]; ft[2] = -kt * h[2];   /* -mu |f_cn| h/|h| */
         } else {
-            double r = 1.0 - hm / dtmax, sr = sqrt(r);
-            if (hm > 0.0) {
-                double c = -q->mu * fcn * (1.0 - r * sr) / hm;
+            double r = 1.0, c = 0.0;
+            if (hm2 > 0.0) {
+                double hm = sqrt(hm2), inv = 1.0 / (hm * dtmax);
+                double x = hm * hm * inv;                           /* |h| / delta_t,max */
+                r = 1.0 - x;
+                double sr = sqrt(r);
+                /* mu f_cn (1 - r^(3/2)) / |h| = kt (1 - r^(3/2)) / x */
+                c = -kt * (1.0 - r * sr) * dtmax * dtmax * inv;
                 ft[0] = c * h[0]; ft[1] = c * h[1]; ft[2] = c * h[2];
+                r = sr;                                             /* (1 - x)^(1/2) */
             }
-            double cd = -q->ct * sqrt(6.0 * q->mu * meff * fcn * sr / dtmax);
+            double cd = -q->ct8 * dn * sqrt(r);                     /* (1 - x)^(1/4) */
             ft[0] += cd * vt[0]; ft[1] += cd * vt[1]; ft[2] += cd * vt[2];
         }
     } else {
@@ -109,16 +124,19 @@ static inline void sd_force(const dem_pair *q, double dt, const double n[3], dou
 }
 
 /* Rolling friction torque on i (j gets the opposite): -mu_r |f_cn| w/|w|,
- * w = w_i - w_j, magnitude limited to |w| / (dt (1/I_i + 1/I_j)). */
+ * w = w_i - w_j, magnitude limited to |w| / (dt (1/I_i + 1/I_j)) so that it
+ * cannot reverse w within a step.  Ii, Ij: moments of inertia (Ij = 0: wall). */
 static inline void rolling(double mu_r, double fel, const double *wi, const double *wj,
-                           double inv_I_sum_dt, double M[3])
+                           double Ii, double Ij, double dt, double M[3])
 {
     double wr[3] = {wi[0] - (wj ? wj[0] : 0), wi[1] - (wj ? wj[1] : 0), wi[2] - (wj ? wj[2] : 0)};
-    double wm = sqrt(wr[0] * wr[0] + wr[1] * wr[1] + wr[2] * wr[2]);
-    if (wm <= 0.0) { M[0] = M[1] = M[2] = 0.0; return; }
-    double m = mu_r * fel, mmax = wm / inv_I_sum_dt;
-    if (m > mmax) m = mmax;
-    double c = -m / wm;
+    double wm2 = wr[0] * wr[0] + wr[1] * wr[1] + wr[2] * wr[2];
+    if (wm2 <= 0.0) { M[0] = M[1] = M[2] = 0.0; return; }
+    double wm = sqrt(wm2), m = mu_r * fel, c;
+    /* limit m <= wm Ii Ij / (dt (Ii + Ij)); wall (Ij -> inf): wm Ii / dt */
+    double num = Ij > 0 ? Ii * Ij : Ii, den = Ij > 0 ? dt * (Ii + Ij) : dt;
+    if (m * den > wm * num) c = -num / den;
+    else c = -m / wm;
     M[0] = c * wr[0]; M[1] = c * wr[1]; M[2] = c * wr[2];
 }
 
@@ -163,13 +181,15 @@ static inline void pair_loop(dem_world *w, const int law, const int periodic,
                 if (h[0] != 0.0 || h[1] != 0.0 || h[2] != 0.0) h[0] = h[1] = h[2] = 0.0;
                 continue;
             }
-            const double r = sqrt(r2), ir = 1.0 / r;
+            const double r = sqrt(r2), mj = mass[j], msum = mi + mj;
+            const double inv = 1.0 / (r * s * msum);  /* one division for 1/r, 1/s, 1/(mi+mj) */
+            const double ir = inv * s * msum;
             const double n[3] = {d0 * ir, d1 * ir, d2 * ir};
             const double delta = s - r;
             nct++;
             if (delta > movr * s) movr = delta / s;
-            const double mj = mass[j];
-            const double meff = mi * mj / (mi + mj);
+            const double meff = mi * mj * (inv * r * s);
+            const double rstar = ai * aj * (inv * r * msum);
             const double *wj = om + 3 * j, *vj = v + 3 * j;
             /* (a_i w_i + a_j w_j) x n */
             const double W0 = ai * wi[0] + aj * wj[0], W1 = ai * wi[1] + aj * wj[1],
@@ -180,7 +200,7 @@ static inline void pair_loop(dem_world *w, const int law, const int periodic,
             const dem_pair *q = prow + mat[j];
             double F[3], ft[3], fel;
             if (law == LAW_HM)
-                hm_force(q, dt, n, delta, vc, meff, ai * aj / s, h, F, ft, &fel);
+                hm_force(q, dt, n, delta, vc, meff, rstar, h, F, ft, &fel);
             else
                 sd_force(q, dt, n, delta, law == LAW_HSD ? sqrt(delta / s) : 1.0, vc, meff, h, F, ft, &fel);
             fi0 += F[0]; fi1 += F[1]; fi2 += F[2];
@@ -192,11 +212,215 @@ static inline void pair_loop(dem_world *w, const int law, const int periodic,
             t[3 * j] -= aj * c0; t[3 * j + 1] -= aj * c1; t[3 * j + 2] -= aj * c2;
             if (q->mu_r > 0.0) {
                 double M[3];
-                double iIsum = 2.5 / (mi * ai * ai) + 2.5 / (mj * aj * aj);
-                rolling(q->mu_r, fel, wi, wj, iIsum * dt, M);
+                rolling(q->mu_r, fel, wi, wj, 0.4 * mi * ai * ai, 0.4 * mj * aj * aj, dt, M);
                 ti0 += M[0]; ti1 += M[1]; ti2 += M[2];
                 t[3 * j] -= M[0]; t[3 * j + 1] -= M[1]; t[3 * j + 2] -= M[2];
             }
+        }
+        f[3 * i] += fi0; f[3 * i + 1] += fi1; f[3 * i + 2] += fi2;
+        t[3 * i] += ti0; t[3 * i + 1] += ti1; t[3 * i + 2] += ti2;
+    }
+    *maxov = movr;
+    *ncont = nct;
+}
+
+/* independent iterations (distinct SoA buffers): let GCC vectorise */
+#if defined(__GNUC__) && !defined(__clang__)
+#define DEM_IVDEP _Pragma("GCC ivdep")
+#else
+#define DEM_IVDEP
+#endif
+
+/* Hertz-Mindlin pair loop, phased per row.  The contacts of row i are
+ * collected into structure-of-arrays buffers, then each phase runs over all
+ * of them: gathers (positions, velocities, history) stay scalar, while the
+ * arithmetic with square roots and divisions runs in branch-free loops the
+ * compiler vectorises, so these long-latency operations overlap instead of
+ * forming one dependent chain per contact.
+ *
+ * The [Z] tangential law is written branch-free.  With x = min(|h|/dtmax, 1),
+ * r = 1 - x, sr = sqrt(r):
+ *   sliding (x = 1): h is scaled to |h| = dtmax, f_t = -mu f_cn h/|h|;
+ *   else             f_t = -mu f_cn (1 - r^(3/2)) h/|h| - c_t (...)(1-x)^(1/4) v_t.
+ * Both are f_t = -kt g sc h - c_t sqrt(8 E* / mindlin) dn sqrt(sr) v_t with
+ *   kt = mu f_cn / dtmax, g = (1 - r^(3/2))/x = (1 + sr + r)/(1 + sr),
+ *   sc = min(1, dtmax/|h|),
+ * since at x = 1: g = 1, sr = 0 (no damping while sliding, as in [Z]). */
+typedef struct {
+    int *j, *k;
+    double *d0, *d1, *d2, *r2, *s, *msum, *mj, *aj;
+    double *delta, *sq, *dn, *fcn, *meff, *idt;
+    double *vn, *vt0, *vt1, *vt2, *hm2, *kt, *ct8, *cn8;
+    double *g, *sc, *q4;
+    double *wm2, *crol, *mur, *Ij;
+    const dem_pair **q;
+} hm_soa;
+
+static void soa_map(hm_soa *b, void *mem, size_t cap)
+{
+    double *p = (double *)mem;
+    double **f[] = {&b->d0, &b->d1, &b->d2, &b->r2, &b->s, &b->msum, &b->mj, &b->aj,
+                    &b->delta, &b->sq, &b->dn, &b->fcn, &b->meff, &b->idt,
+                    &b->vn, &b->vt0, &b->vt1, &b->vt2, &b->hm2, &b->kt, &b->ct8, &b->cn8,
+                    &b->g, &b->sc, &b->q4, &b->wm2, &b->crol, &b->mur, &b->Ij};
+    size_t nf = sizeof f / sizeof f[0];
+    for (size_t a = 0; a < nf; ++a) { *f[a] = p; p += cap; }
+    b->q = (const dem_pair **)p; p += cap;
+    b->j = (int *)p;
+    b->k = b->j + cap;
+}
+_Static_assert(31 * sizeof(double) <= DEM_SCRATCH_ENTRY, "scratch entry too small for the SoA buffers");
+
+static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov, size_t *ncont)
+{
+    const double dt = w->hdt;
+    const int nm = w->nmat;
+    const dem_pair *pt = w->pair;
+    const double *x = w->x, *v = w->v, *om = w->w, *rad = w->rad, *mass = w->mass;
+    const int *mat = w->mat_of;
+    double *f = w->f, *t = w->t;
+    const int *off = w->nb_off, *nbj = w->nb_j;
+    const unsigned char *nbs = w->nb_s;
+    double *nbh = w->nb_h;
+    const double dtl = w->cfg.dt;  /* step of the rolling-torque limiter */
+    hm_soa B;
+    soa_map(&B, w->scratch, w->capscratch);
+    double *restrict Bd0 = B.d0, *restrict Bd1 = B.d1, *restrict Bd2 = B.d2, *restrict Br2 = B.r2, *restrict Bs = B.s, *restrict Bmsum = B.msum, *restrict Bmj = B.mj, *restrict Baj = B.aj, *restrict Bdelta = B.delta, *restrict Bsq = B.sq, *restrict Bdn = B.dn, *restrict Bfcn = B.fcn, *restrict Bmeff = B.meff, *restrict Bidt = B.idt, *restrict Bvn = B.vn, *restrict Bvt0 = B.vt0, *restrict Bvt1 = B.vt1, *restrict Bvt2 = B.vt2, *restrict Bhm2 = B.hm2, *restrict Bkt = B.kt, *restrict Bct8 = B.ct8, *restrict Bcn8 = B.cn8, *restrict Bg = B.g, *restrict Bsc = B.sc, *restrict Bq4 = B.q4, *restrict Bwm2 = B.wm2, *restrict Bcrol = B.crol, *restrict Bmur = B.mur, *restrict BIj = B.Ij;
+    int *restrict Bj = B.j, *restrict Bk = B.k;
+    const dem_pair **restrict Bq = B.q;
+    double movr = *maxov;
+    size_t nct = 0;
+    const size_t nrows = w->nrows;
+    for (size_t i = 0; i < nrows; ++i) {
+        const int k0 = off[i], k1 = off[i + 1];
+        if (k0 == k1) continue;
+        const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
+        const double ai = rad[i], mi = mass[i], Ii = 0.4 * mi * ai * ai;
+        const double *wi = om + 3 * i, *vi = v + 3 * i;
+        const dem_pair *prow = pt + (size_t)mat[i] * nm;
+        /* phase 1 (gather): which entries touch */
+        int nc = 0;
+        for (int k = k0; k < k1; ++k) {
+            const int j = nbj[k];
+            double d0 = xi0 - x[3 * j], d1 = xi1 - x[3 * j + 1], d2 = xi2 - x[3 * j + 2];
+            if (periodic) {
+                const double *sh = w->shift[nbs[k]];
+                d0 += sh[0]; d1 += sh[1]; d2 += sh[2];
+            }
+            const double aj = rad[j], s = ai + aj;
+            const double r2 = d0 * d0 + d1 * d1 + d2 * d2;
+            if (r2 >= s * s) {
+                double *h = nbh + 3 * (size_t)k;
+                if (h[0] != 0.0 || h[1] != 0.0 || h[2] != 0.0) h[0] = h[1] = h[2] = 0.0;
+                continue;
+            }
+            const double mj = mass[j];
+            const dem_pair *q = prow + mat[j];
+            Bd0[nc] = d0; Bd1[nc] = d1; Bd2[nc] = d2; Br2[nc] = r2; Bs[nc] = s;
+            Bmj[nc] = mj; Bmsum[nc] = mi + mj; Baj[nc] = aj; BIj[nc] = 0.4 * mj * aj * aj;
+            Bq[nc] = q;
+            Bcn8[nc] = q->cn8; Bct8[nc] = q->mu > 0.0 ? q->ct8 : 0.0;
+            Bkt[nc] = q->k43; Bsc[nc] = q->k43_mind; Bidt[nc] = q->imumind; Bg[nc] = q->mumind;
+            Bmur[nc] = q->mu_r;
+            Bj[nc] = j; Bk[nc] = k;
+            nc++;
+        }
+        if (nc == 0) continue;
+        nct += (size_t)nc;
+        /* phase 2 (vector): geometry, normal force */
+        DEM_IVDEP
+        for (int a = 0; a < nc; ++a) {
+            const double r = sqrt(Br2[a]), s = Bs[a], msum = Bmsum[a];
+            const double delta = s - r;
+            const double inv = 1.0 / (r * s * msum * delta);  /* 1/r, 1/s, 1/(mi+mj), 1/delta */
+            const double ir = inv * s * msum * delta;
+            Bd0[a] *= ir; Bd1[a] *= ir; Bd2[a] *= ir;
+            const double meff = mi * Bmj[a] * (inv * r * s * delta);
+            const double rstar = ai * Baj[a] * (inv * r * msum * delta);
+            const double sq = sqrt(rstar * delta);
+            const double k43 = Bkt[a];
+            Bdelta[a] = delta;
+            Bsq[a] = sq;
+            Bfcn[a] = k43 * sq * delta;
+            Bdn[a] = sqrt(meff * sq);
+            Bmeff[a] = Bg[a] * delta;                    /* delta_t,max = mu mindlin delta */
+            Bidt[a] = Bidt[a] * (inv * r * s * msum);    /* 1/delta_t,max (mu = 0: 0) */
+            Bkt[a] = Bsc[a] * sq;                         /* mu f_cn / delta_t,max */
+        }
+        for (int a = 0; a < nc; ++a) {
+            const double ov = Bdelta[a];
+            if (ov > movr * Bs[a]) movr = ov / Bs[a];
+        }
+        /* phase 3 (gather): relative velocity, history update */
+        for (int a = 0; a < nc; ++a) {
+            const int j = Bj[a];
+            const double aj = Baj[a];
+            const double *wj = om + 3 * j, *vj = v + 3 * j;
+            const double n[3] = {Bd0[a], Bd1[a], Bd2[a]};
+            const double W0 = ai * wi[0] + aj * wj[0], W1 = ai * wi[1] + aj * wj[1],
+                         W2 = ai * wi[2] + aj * wj[2];
+            const double vc0 = vi[0] - vj[0] - (W1 * n[2] - W2 * n[1]);
+            const double vc1 = vi[1] - vj[1] - (W2 * n[0] - W0 * n[2]);
+            const double vc2 = vi[2] - vj[2] - (W0 * n[1] - W1 * n[0]);
+            const double vn = vc0 * n[0] + vc1 * n[1] + vc2 * n[2];
+            const double vt0 = vc0 - vn * n[0], vt1 = vc1 - vn * n[1], vt2 = vc2 - vn * n[2];
+            Bvn[a] = vn; Bvt0[a] = vt0; Bvt1[a] = vt1; Bvt2[a] = vt2;
+            double *h = nbh + 3 * (size_t)Bk[a];
+            if (Bidt[a] > 0.0) {
+                rotate_history(h, n);
+                h[0] += vt0 * dt; h[1] += vt1 * dt; h[2] += vt2 * dt;
+                Bhm2[a] = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+            } else {
+                h[0] = h[1] = h[2] = 0.0;
+                Bhm2[a] = 0.0;
+            }
+            const double wr0 = wi[0] - wj[0], wr1 = wi[1] - wj[1], wr2 = wi[2] - wj[2];
+            Bwm2[a] = wr0 * wr0 + wr1 * wr1 + wr2 * wr2;
+        }
+        /* phase 4 (vector): tangential law factors, rolling factor */
+        DEM_IVDEP
+        for (int a = 0; a < nc; ++a) {
+            const double hm = sqrt(Bhm2[a]);
+            double xx = hm * Bidt[a];
+            xx = xx < 1.0 ? xx : 1.0;
+            const double r = 1.0 - xx, sr = sqrt(r);
+            const double hmsafe = hm > 0.0 ? hm : 1.0;
+            const double inv = 1.0 / (hmsafe * (1.0 + sr));
+            const double dtmax_over_hm = Bmeff[a] * (1.0 + sr) * inv;  /* dtmax / |h| */
+            Bsc[a] = dtmax_over_hm < 1.0 ? dtmax_over_hm : 1.0;
+            Bg[a] = (1.0 + sr + r) * hmsafe * inv;
+            Bq4[a] = sqrt(sr);
+            /* rolling: c = -min(mu_r f_cn / wm, Ii Ij / (dt (Ii + Ij))) */
+            const double wm = sqrt(Bwm2[a]);
+            const double wmsafe = wm > 0.0 ? wm : 1.0;
+            const double Ij = BIj[a], den = dtl * (Ii + Ij);
+            const double inv2 = 1.0 / (wmsafe * den);
+            const double c1 = Bmur[a] * Bfcn[a] * den * inv2, c2 = Ii * Ij * wmsafe * inv2;
+            Bcrol[a] = wm > 0.0 ? -(c1 < c2 ? c1 : c2) : 0.0;
+        }
+        /* phase 5 (scatter): forces and torques */
+        double fi0 = 0, fi1 = 0, fi2 = 0, ti0 = 0, ti1 = 0, ti2 = 0;
+        for (int a = 0; a < nc; ++a) {
+            const int j = Bj[a];
+            const double aj = Baj[a];
+            const double n0 = Bd0[a], n1 = Bd1[a], n2 = Bd2[a];
+            double *h = nbh + 3 * (size_t)Bk[a];
+            const double sc = Bsc[a];
+            if (sc < 1.0) { h[0] *= sc; h[1] *= sc; h[2] *= sc; }
+            const double ce = -Bkt[a] * Bg[a], cd = -Bct8[a] * Bdn[a] * Bq4[a];
+            const double ft0 = ce * h[0] + cd * Bvt0[a];
+            const double ft1 = ce * h[1] + cd * Bvt1[a];
+            const double ft2 = ce * h[2] + cd * Bvt2[a];
+            const double fn = Bfcn[a] - Bcn8[a] * Bdn[a] * Bvn[a];
+            const double F0 = fn * n0 + ft0, F1 = fn * n1 + ft1, F2 = fn * n2 + ft2;
+            fi0 += F0; fi1 += F1; fi2 += F2;
+            f[3 * j] -= F0; f[3 * j + 1] -= F1; f[3 * j + 2] -= F2;
+            const double c0 = n1 * ft2 - n2 * ft1, c1 = n2 * ft0 - n0 * ft2, c2 = n0 * ft1 - n1 * ft0;
+            const double cr = Bcrol[a];
+            const double *wj = om + 3 * j;
+            const double M0 = cr * (wi[0] - wj[0]), M1 = cr * (wi[1] - wj[1]), M2 = cr * (wi[2] - wj[2]);
+            ti0 += M0 - ai * c0; ti1 += M1 - ai * c1; ti2 += M2 - ai * c2;
+            t[3 * j] -= aj * c0 + M0; t[3 * j + 1] -= aj * c1 + M1; t[3 * j + 2] -= aj * c2 + M2;
         }
         f[3 * i] += fi0; f[3 * i + 1] += fi1; f[3 * i + 2] += fi2;
         t[3 * i] += ti0; t[3 * i + 1] += ti1; t[3 * i + 2] += ti2;
@@ -231,7 +455,7 @@ static inline void wall_contact(dem_world *w, int law, size_t i, const double n[
     }
     if (q->mu_r > 0.0) {
         double M[3];
-        rolling(q->mu_r, fel, wi, NULL, 2.5 / (mi * ai * ai) * w->cfg.dt, M);
+        rolling(q->mu_r, fel, wi, NULL, 0.4 * mi * ai * ai, 0.0, w->cfg.dt, M);
         for (int k = 0; k < 3; ++k) w->t[3 * i + k] += M[k];
     }
     w->wall_contacts++;
@@ -358,7 +582,7 @@ void dem_forces(dem_world *w, double hist_dt)
     int per = w->cfg.periodic[0] || w->cfg.periodic[1] || w->cfg.periodic[2];
     switch (w->cfg.contact_law) {
     case DEM_CONTACT_HERTZ_MINDLIN:
-        if (per) pair_loop(w, LAW_HM, 1, &movr, &nct); else pair_loop(w, LAW_HM, 0, &movr, &nct);
+        if (per) pair_loop_hm(w, 1, &movr, &nct); else pair_loop_hm(w, 0, &movr, &nct);
         break;
     case DEM_CONTACT_LINEAR_SPRING_DASHPOT:
         if (per) pair_loop(w, LAW_LSD, 1, &movr, &nct); else pair_loop(w, LAW_LSD, 0, &movr, &nct);

@@ -33,6 +33,13 @@ typedef struct {
     double estar;        /* E* */
     double cn, ct;       /* dimensionless damping */
     double mindlin;      /* (2 - nu) / (2 (1 - nu)): delta_t,max = mu * mindlin * delta_n */
+    /* derived constants of the Hertz-Mindlin kernel (no divisions in the loop) */
+    double k43;          /* (4/3) E* */
+    double cn8;          /* c_n sqrt(8 E*) */
+    double mumind;       /* mu * mindlin */
+    double imumind;      /* 1 / (mu mindlin), 0 if mu = 0 */
+    double k43_mind;     /* (4/3) E* / mindlin = mu |f_cn| / (delta_t,max sqrt(R* delta)) */
+    double ct8;          /* c_t sqrt(8 E* / mindlin) */
     /* spring-dashpot [S] */
     double kn, kt;
     double eta_fixed;    /* >= 0: normal damping [N s/m] used as given */
@@ -97,6 +104,9 @@ struct dem_world {
     /* materials */
     int nmat, capmat;
     dem_material *mat;       /* as given by the user */
+    double *mat_e, *mat_c;   /* derived restitution / damping per material (cache) */
+    int nmat_derived;        /* materials [0, nmat_derived) have mat_e/mat_c */
+    int derived_law;
     dem_pair *pair;          /* nmat*nmat, valid when !pairs_dirty */
     int pairs_dirty;
 
@@ -177,6 +187,8 @@ struct dem_world {
     size_t pair_contacts, wall_contacts;
     int forces_valid;
     double hdt;              /* history increment of the current force evaluation */
+    void *scratch;           /* per-row contact buffer of the phased Hertz-Mindlin loop */
+    size_t capscratch;       /* entries */
 };
 
 /*--- internal functions ----------------------------------------------------*/
@@ -184,6 +196,8 @@ dem_status dem_reserve(dem_world *w, size_t cap);
 dem_status dem_pairs_update(dem_world *w);
 dem_status dem_ext_alloc(dem_world *w);
 dem_status dem_list_build(dem_world *w);
+dem_status dem_scratch_ensure(dem_world *w);
+#define DEM_SCRATCH_ENTRY 256 /* bytes per contact of the phased loop buffer */
 void       dem_forces(dem_world *w, double hist_dt);
 dem_status dem_append_particle(dem_world *w, const dem_particle *p);
 void       dem_remove_index(dem_world *w, size_t i);

@@ -263,6 +263,7 @@ static dem_status load_world(wio *o, dem_world *w, const char *path, dem_world *
     GET(o, pc); GET(o, wc); GET(o, w->forces_valid);
     w->pair_contacts = (size_t)pc; w->wall_contacts = (size_t)wc;
     if (o->bad) goto bad;
+    if (w->nrows && (st = dem_scratch_ensure(w))) goto fail;
     {
         char extra;
         if (fread(&extra, 1, 1, o->f) == 1) goto bad; /* trailing data */

@@ -277,6 +277,22 @@ static int cmp_wcarry(const void *a, const void *b)
     return (x->tri > y->tri) - (x->tri < y->tri);
 }
 
+/* Per-row contact buffer of the phased pair loop: longest row entries. */
+dem_status dem_scratch_ensure(dem_world *w)
+{
+    size_t maxrow = 1;
+    for (size_t i = 0; i < w->nrows; ++i)
+        if ((size_t)(w->nb_off[i + 1] - w->nb_off[i]) > maxrow)
+            maxrow = (size_t)(w->nb_off[i + 1] - w->nb_off[i]);
+    if (maxrow <= w->capscratch) return DEM_OK;
+    size_t nc = 2 * maxrow;
+    void *sc = realloc(w->scratch, nc * DEM_SCRATCH_ENTRY);
+    if (!sc) return DEM_FAIL(w, DEM_ERR_NOMEM, "contact buffer: %zu entries", nc);
+    w->scratch = sc;
+    w->capscratch = nc;
+    return DEM_OK;
+}
+
 dem_status dem_list_build(dem_world *w)
 {
     dem_status st;
@@ -493,6 +509,8 @@ dem_status dem_list_build(dem_world *w)
     }
     w->nnb = cnt;
     free(cs2);
+    w->nrows = np;
+    if ((st = dem_scratch_ensure(w))) { free(wcar); return st; }
 
     /* wall candidates */
     st = bin_triangles(w);

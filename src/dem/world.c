@@ -111,7 +111,7 @@ void dem_world_destroy(dem_world **pw)
 {
     if (!pw || !*pw) return;
     dem_world *w = *pw;
-    free(w->mat); free(w->pair);
+    free(w->mat); free(w->pair); free(w->mat_e); free(w->mat_c);
     free(w->id); free(w->x); free(w->v); free(w->w); free(w->f); free(w->t);
     free(w->rad); free(w->mass); free(w->rho); free(w->mat_of); free(w->x0);
     free(w->list_index);
@@ -128,7 +128,7 @@ void dem_world_destroy(dem_world **pw)
     free(w->meshes);
     free(w->tri_mesh); free(w->tri_local); free(w->tcell_start); free(w->tcell_item);
     for (int i = 0; i < w->ninlets; ++i) free(w->inlets[i].poly);
-    free(w->inlets); free(w->outlets); free(w->rec);
+    free(w->inlets); free(w->outlets); free(w->rec); free(w->scratch);
     free(w);
     *pw = NULL;
 }
@@ -231,6 +231,7 @@ dem_status dem_world_add_material(dem_world *w, const dem_material *m, int *mate
     w->mat[w->nmat] = mm;
     if (material_id) *material_id = w->nmat;
     w->nmat++;
+    if (w->nmat_derived >= w->nmat) w->nmat_derived = w->nmat - 1;
     w->pairs_dirty = 1;
     return DEM_OK;
 }
@@ -254,7 +255,12 @@ dem_status dem_world_material_get(const dem_world *w, int id, dem_material *m)
     if (id < 0 || id >= w->nmat)
         return DEM_FAIL(w, DEM_ERR_NOTFOUND, "material %d; %d defined", id, w->nmat);
     *m = w->mat[id];
-    material_derived(w, &w->mat[id], &m->restitution, &m->damping);
+    if (id < w->nmat_derived && w->derived_law == (int)w->cfg.contact_law) {
+        m->restitution = w->mat_e[id];
+        m->damping = w->mat_c[id];
+    } else {
+        material_derived(w, &w->mat[id], &m->restitution, &m->damping);
+    }
     return DEM_OK;
 }
 
@@ -275,14 +281,23 @@ dem_status dem_pairs_update(dem_world *w)
             return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: stiffness_n = %g; allowed > 0 (law %s)",
                             i, a->stiffness_n, law_names[law]);
     }
+    if (w->derived_law != (int)law) w->nmat_derived = 0;
+    if (w->nmat_derived < nm) {
+        double *e = realloc(w->mat_e, (size_t)nm * sizeof(double));
+        if (e) w->mat_e = e;
+        double *c = realloc(w->mat_c, (size_t)nm * sizeof(double));
+        if (c) w->mat_c = c;
+        if (!e || !c) return DEM_FAIL(w, DEM_ERR_NOMEM, "material cache %d", nm);
+        for (int i = w->nmat_derived; i < nm; ++i) material_derived(w, &w->mat[i], &w->mat_e[i], &w->mat_c[i]);
+        w->nmat_derived = nm;
+        w->derived_law = law;
+    }
     for (int i = 0; i < nm; ++i) {
         for (int j = 0; j < nm; ++j) {
             const dem_material *a = &w->mat[i], *b = &w->mat[j];
             dem_pair *q = &p[i * nm + j];
             memset(q, 0, sizeof *q);
-            double ea, ca, eb, cb;
-            material_derived(w, a, &ea, &ca);
-            material_derived(w, b, &eb, &cb);
+            double ea = w->mat_e[i], ca = w->mat_c[i], eb = w->mat_e[j], cb = w->mat_c[j];
             q->mu = fmin(a->friction, b->friction);
             q->mu_r = fmin(a->rolling_friction, b->rolling_friction);
             q->nu = 0.5 * (a->poisson_ratio + b->poisson_ratio);
@@ -292,6 +307,12 @@ dem_status dem_pairs_update(dem_world *w)
                                   (1.0 - b->poisson_ratio * b->poisson_ratio) / b->youngs_modulus);
                 q->e = fmin(ea, eb);
                 q->cn = q->ct = (ea <= eb) ? ca : cb;
+                q->k43 = 4.0 / 3.0 * q->estar;
+                q->cn8 = q->cn * sqrt(8.0 * q->estar);
+                q->mumind = q->mu * q->mindlin;
+                q->imumind = q->mumind > 0 ? 1.0 / q->mumind : 0.0;
+                q->k43_mind = q->k43 / q->mindlin;
+                q->ct8 = q->ct * sqrt(8.0 * q->estar / q->mindlin);
             } else {
                 q->kn = (i == j) ? a->stiffness_n
                                  : a->stiffness_n * b->stiffness_n / (a->stiffness_n + b->stiffness_n);

@@ -45,7 +45,7 @@ int main(void)
     size_t got = 0;
     TRY(w, dem_world_fill_box(w, lo, hi, NULL, NULL, n, &t, &got));
     check_abs("bed fill_box inserted", (double)got, (double)n, 0.0);
-    const double T = 0.45;
+    const double T = 0.4;
     TRY(w, dem_world_step(w, (int64_t)(T / dt)));
     dem_stats st;
     TRY(w, dem_world_stats(w, &st));
