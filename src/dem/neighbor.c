@@ -298,6 +298,18 @@ dem_status dem_list_build(dem_world *w)
     dem_status st;
     size_t np = w->n + w->ng;
     if ((st = setup_grid(w))) return st;
+    /* build-only work arrays: allocated here, released at the end of the
+       build (they are not needed between builds: memory per particle) */
+    {
+        size_t cap = np + 1;
+        int *a = realloc(w->cell_of, cap * sizeof(int));
+        if (a) w->cell_of = a;
+        int *b = realloc(w->perm, cap * sizeof(int));
+        if (b) w->perm = b;
+        double *c = realloc(w->tmp, 3 * cap * sizeof(double));
+        if (c) w->tmp = c;
+        if (!a || !b || !c) return DEM_FAIL(w, DEM_ERR_NOMEM, "list build work arrays: %zu particles", np);
+    }
     /* periodic wrap */
     for (int k = 0; k < 3; ++k) {
         if (!w->cfg.periodic[k]) continue;
@@ -588,5 +600,14 @@ dem_status dem_list_build(dem_world *w)
     w->t_build = w->time;
     w->nbuilds++;
     w->list_valid = 1;
+    free(w->cell_of); w->cell_of = NULL;
+    free(w->perm); w->perm = NULL;
+    free(w->tmp); w->tmp = NULL;
+    free(w->cell_item); w->cell_item = NULL;
+    free(w->cell_start); w->cell_start = NULL;
+    free(w->tcell_start); w->tcell_start = NULL;
+    w->capcells = 0;
+    free(w->tcell_item); w->tcell_item = NULL;
+    w->captcell_item = 0;
     return DEM_OK;
 }

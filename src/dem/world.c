@@ -342,7 +342,6 @@ static dem_status reserve_raw(dem_world *w, size_t cap)
     GROW(w->id, cap); GROW(w->x, 3 * cap); GROW(w->v, 3 * cap); GROW(w->w, 3 * cap);
     GROW(w->f, 3 * cap); GROW(w->t, 3 * cap); GROW(w->rad, cap); GROW(w->mass, cap);
     GROW(w->rho, cap); GROW(w->mat_of, cap); GROW(w->x0, 3 * cap); GROW(w->list_index, cap);
-    GROW(w->cell_of, cap); GROW(w->perm, cap + 1); GROW(w->tmp, 3 * cap);
     if (w->have_ext) {
         GROW(w->fext, 3 * cap); GROW(w->text, 3 * cap); GROW(w->K, cap);
         GROW(w->uf, 3 * cap); GROW(w->J, 3 * cap);
@@ -354,8 +353,10 @@ static dem_status reserve_raw(dem_world *w, size_t cap)
 dem_status dem_reserve(dem_world *w, size_t cap)
 {
     if (cap <= w->cap) return DEM_OK;
-    size_t nc = w->cap ? w->cap : 64;
-    while (nc < cap) nc *= 2;
+    /* grow by half for one-at-a-time insertion, exactly for bulk requests */
+    size_t nc = w->cap + w->cap / 2;
+    if (nc < 64) nc = 64;
+    if (nc < cap) nc = cap;
     if (reserve_raw(w, nc) != DEM_OK)
         return DEM_FAIL(w, DEM_ERR_NOMEM, "particle storage for %zu particles", nc);
     return DEM_OK;
@@ -661,4 +662,19 @@ dem_status dem_world_contact_time(const dem_world *wc, double impact_speed, doub
     dem_status s = dem_pairs_update(w);
     if (s) return s;
     return dem_contact_time_internal(w, impact_speed, 0, t_contact);
+}
+
+dem_status dem_world_memory(const dem_world *w, size_t *particle_bytes, size_t *list_bytes)
+{
+    if (!w) return DEM_ERR_ARG;
+    /* id, x, v, w, f, t, radius, mass, density, material, x0 (float), list_index */
+    size_t per = sizeof(int64_t) + 15 * sizeof(double) + 3 * sizeof(double) + sizeof(int) +
+                 3 * sizeof(float) + sizeof(int);
+    if (w->have_ext) per += 13 * sizeof(double);
+    if (particle_bytes) *particle_bytes = w->cap * per;
+    if (list_bytes)
+        *list_bytes = w->capnb * (sizeof(int) + 1 + 3 * sizeof(double)) + w->caprows * sizeof(int) +
+                      w->capwc * (2 * sizeof(int) + 3 * sizeof(double)) +
+                      (w->wc_off ? (w->nrows + 1) * sizeof(int) : 0) + w->capscratch * DEM_SCRATCH_ENTRY;
+    return DEM_OK;
 }

@@ -234,6 +234,10 @@ typedef struct {
     int64_t inserted, removed;
 } dem_stats;
 dem_status dem_world_stats(const dem_world *w, dem_stats *s);
+/** Added: heap memory held by the world [bytes]: particle arrays (per-particle
+ *  storage incl. capacity slack and the coupling arrays once allocated) and
+ *  the neighbour/wall lists with their contact history.  Either may be NULL. */
+dem_status dem_world_memory(const dem_world *w, size_t *particle_bytes, size_t *list_bytes);
 /** Per owned particle: coordination number (particle contacts) and the sum
  *  of contact forces (3 per particle).  Either pointer may be NULL. */
 dem_status dem_world_particle_contacts(const dem_world *w, int *coordination, double *contact_force);
