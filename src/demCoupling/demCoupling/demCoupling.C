@@ -201,7 +201,7 @@ Foam::demCoupling::demCoupling
             const int64_t n = int64_t(tSettle/demDt_ + 0.5);
             Info<< "demCoupling: settling " << n << " DEM steps ("
                 << tSettle << " s) without fluid" << endl;
-            world_.check(dem_world_step(world_, n), "dem_world_step (settling)");
+            world_.step(n, "dem_world_step (settling)");
         }
     }
 
@@ -396,34 +396,51 @@ void Foam::demCoupling::addWalls()
         }
         else if (isA<wallPolyPatch>(pp) || extraWalls.found(pp.name()))
         {
-            // fan triangulation about each face centre (robust for the
-            // polygonal faces of polyhedral meshes with collinear points);
-            // degenerate triangles are skipped
+            // fan triangulation from the first vertex; faces where that
+            // gives a degenerate triangle (collinear points, as on the
+            // boundary of polyDualMesh meshes) are fanned about their centre
+            // instead, skipping degenerate triangles
             const pointField& lp = pp.localPoints();
             const faceList& lf = pp.localFaces();
-            DynamicList<double> verts(3*(lp.size() + lf.size()));
+            DynamicList<double> verts(3*lp.size());
             for (const point& x : lp)
             {
                 verts.append(x.x()); verts.append(x.y()); verts.append(x.z());
             }
             DynamicList<int> tris;
+            auto triArea = [&](const point& a, const point& b, const point& c)
+            {
+                return 0.5*mag((b - a) ^ (c - a));
+            };
             forAll(lf, facei)
             {
                 const face& f = lf[facei];
-                const point c = f.centre(lp);
                 const scalar fArea = f.mag(lp);
+                bool degenerate = false;
+                for (label k = 1; k + 1 < f.size(); ++k)
+                {
+                    if (triArea(lp[f[0]], lp[f[k]], lp[f[k+1]]) <= 1e-10*fArea)
+                    {
+                        degenerate = true;
+                    }
+                }
+                if (!degenerate)
+                {
+                    for (label k = 1; k + 1 < f.size(); ++k)
+                    {
+                        tris.append(f[0]); tris.append(f[k]); tris.append(f[k+1]);
+                    }
+                    continue;
+                }
+                const point c = f.centre(lp);
                 const int ci = int(verts.size()/3);
                 verts.append(c.x()); verts.append(c.y()); verts.append(c.z());
                 forAll(f, k)
                 {
                     const label a = f[k], b = f.nextLabel(k);
-                    const scalar triArea =
-                        0.5*mag((lp[a] - c) ^ (lp[b] - c));
-                    if (triArea > 1e-10*fArea)
+                    if (triArea(c, lp[a], lp[b]) > 1e-10*fArea)
                     {
-                        tris.append(ci);
-                        tris.append(int(a));
-                        tris.append(int(b));
+                        tris.append(ci); tris.append(int(a)); tris.append(int(b));
                     }
                 }
             }
@@ -1006,7 +1023,7 @@ void Foam::demCoupling::evolve
         }
         if (!frozen_)
         {
-            world_.check(dem_world_step(world_, m), "dem_world_step");
+            world_.step(m);
         }
         done += m;
     }

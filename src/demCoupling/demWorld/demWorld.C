@@ -1,4 +1,5 @@
 #include "demWorld.H"
+#include <cfenv>
 #include "error.H"
 #include "messageStream.H"
 
@@ -57,4 +58,15 @@ dem_arrays Foam::demWorld::arrays() const
     dem_arrays a;
     check(dem_world_arrays(w_, &a), "dem_world_arrays");
     return a;
+}
+
+
+void Foam::demWorld::step(const int64_t nsteps, const char* what)
+{
+    std::fenv_t env;
+    std::feholdexcept(&env);            // save and suspend traps
+    const dem_status s = dem_world_step(w_, nsteps);
+    std::feclearexcept(FE_ALL_EXCEPT);
+    std::fesetenv(&env);                // restore OpenFOAM's traps
+    check(s, what);
 }
