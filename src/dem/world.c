@@ -546,6 +546,7 @@ dem_status dem_world_stats(const dem_world *w, dem_stats *s)
     s->wall_contacts = w->wall_contacts;
     s->inserted = w->inserted;
     s->removed = w->removed;
+    s->list_builds = w->nbuilds;
     return DEM_OK;
 }
 

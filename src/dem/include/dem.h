@@ -232,6 +232,7 @@ typedef struct {
     double max_overlap_ratio;                  /* max overlap / diameter (pairs and walls) */
     size_t pair_contacts, wall_contacts;
     int64_t inserted, removed;
+    int64_t list_builds;                       /* added: neighbour-list builds so far */
 } dem_stats;
 dem_status dem_world_stats(const dem_world *w, dem_stats *s);
 /** Added: heap memory held by the world [bytes]: particle arrays (per-particle
