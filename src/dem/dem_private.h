@@ -80,6 +80,7 @@ typedef struct {
     double due;          /* particles (number) or kg (mass) owed */
     double next_d, next_rho; int have_next;
     int64_t inserted;
+    int warned;          /* blocked warning given */
 } dem_inlet;
 
 typedef struct {

@@ -398,7 +398,14 @@ dem_status dem_inlets_run(dem_world *w)
                     if (d0 * d0 + d1 * d1 + d2 * d2 < s * s) ok = 0;
                 }
             }
-            if (!ok) break; /* blocked: keep what is owed for the next step */
+            if (!ok) { /* blocked: keep what is owed for the next step */
+                if (!in->warned && in->due > need + 100.0 * (in->kind == DEM_RATE_NUMBER ? 1.0 : mnext)) {
+                    in->warned = 1;
+                    dem_log_(w, DEM_LOG_WARNING, "inlet %d is blocked at t = %g: %g %s owed", q, w->time,
+                             in->due, in->kind == DEM_RATE_NUMBER ? "particles" : "kg");
+                }
+                break;
+            }
             dem_particle p;
             memset(&p, 0, sizeof p);
             p.id = -1;
@@ -409,6 +416,7 @@ dem_status dem_inlets_run(dem_world *w)
             if (s) return s;
             w->inserted++;
             in->inserted++;
+            in->warned = 0;
             in->due -= need;
             in->next_d = dem_dist_draw(w, &t.diameter);
             in->next_rho = dem_dist_draw(w, &t.density);

@@ -295,6 +295,8 @@ dem_status dem_world_restore(dem_world *w, const char *path)
     w->log = lf; w->log_user = lu;
     w->err[0] = '\0';
     dem_world_destroy(&nw);
+    dem_log_(w, DEM_LOG_INFO, "restored '%s': %zu particles, step %lld, t = %g", path, w->n,
+             (long long)w->step, w->time);
     return dem_pairs_update(w);
 }
 

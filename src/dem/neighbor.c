@@ -599,6 +599,9 @@ dem_status dem_list_build(dem_world *w)
     w->nrows = np;
     w->t_build = w->time;
     w->nbuilds++;
+    dem_log_(w, DEM_LOG_DEBUG, "neighbour list %lld at step %lld: %zu particles, %zu entries, %zu wall candidates, "
+             "cells %d x %d x %d, skin %g m", (long long)w->nbuilds, (long long)w->step, np, w->nnb, w->nwc,
+             w->nc[0], w->nc[1], w->nc[2], w->skin);
     w->list_valid = 1;
     free(w->cell_of); w->cell_of = NULL;
     free(w->perm); w->perm = NULL;
