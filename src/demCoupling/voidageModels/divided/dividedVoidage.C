@@ -1,5 +1,6 @@
 #include "dividedVoidage.H"
 #include "addToRunTimeSelectionTable.H"
+#include "FixedList.H"
 
 namespace Foam
 {
@@ -52,10 +53,77 @@ void Foam::voidageModels::divided::addWeights
 {
     const label start = cells.size();
     const scalar w = 1.0/samples_.size();
+
+    // Faces of the host cell whose plane is closer to the centre than r
+    // (only those can be crossed by a sample point).  A sample behind all of
+    // them is in the host cell, exactly as the walk would find for a convex
+    // cell, without the walk.
+    const cell& hc = mesh_.cells()[hostCell];
+    const vectorField& Sf = mesh_.faceAreas();
+    const vectorField& Cf = mesh_.faceCentres();
+    const labelList& own = mesh_.faceOwner();
+    FixedList<vector, 64> nOut;
+    FixedList<scalar, 64> dIn;
+    label nNear = 0;
+    bool allNear = hc.size() > 64;
+    if (!allNear)
+    {
+        for (const label facei : hc)
+        {
+            vector n = Sf[facei]/mag(Sf[facei]);
+            if (own[facei] != hostCell) n = -n;
+            const scalar d = (Cf[facei] - x) & n;
+            if (d < r)
+            {
+                nOut[nNear] = n;
+                dIn[nNear] = d;
+                ++nNear;
+            }
+        }
+    }
+    if (!allNear && nNear == 0)
+    {
+        cells.append(hostCell);
+        weights.append(1.0);
+        return;
+    }
+
     label prev = hostCell;
     forAll(samples_, s)
     {
-        label c = locator_.locate(x + r*samples_[s], prev, false);
+        const vector q = r*samples_[s];
+        if (!allNear)
+        {
+            bool inHost = true;
+            for (label k = 0; k < nNear; ++k)
+            {
+                if ((q & nOut[k]) > dIn[k])
+                {
+                    inHost = false;
+                    break;
+                }
+            }
+            if (inHost)
+            {
+                bool found = false;
+                for (label k = start; k < cells.size(); ++k)
+                {
+                    if (cells[k] == hostCell)
+                    {
+                        weights[k] += w;
+                        found = true;
+                        break;
+                    }
+                }
+                if (!found)
+                {
+                    cells.append(hostCell);
+                    weights.append(w);
+                }
+                continue;
+            }
+        }
+        label c = locator_.locate(x + q, prev, false);
         if (c < 0)
         {
             c = hostCell;
