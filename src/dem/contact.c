@@ -224,6 +224,10 @@ static inline void pair_loop(dem_world *w, const int law, const int periodic,
     *ncont = nct;
 }
 
+/* contacts processed per block in the phased Hertz-Mindlin loop */
+#define DEM_HM_BLOCK 64
+_Static_assert(DEM_SCRATCH_EXTRA >= DEM_HM_BLOCK, "scratch must hold a block plus the longest row");
+
 /* independent iterations (distinct SoA buffers): let GCC vectorise */
 #if defined(__GNUC__) && !defined(__clang__)
 #define DEM_IVDEP _Pragma("GCC ivdep")
@@ -252,8 +256,9 @@ typedef struct {
     double *delta, *sq, *dn, *fcn, *meff, *idt;
     double *vn, *vt0, *vt1, *vt2, *hm2, *kt, *ct8, *cn8;
     double *g, *sc, *q4;
-    double *wm2, *crol, *mur, *Ij;
+    double *wm2, *crol, *mur, *Ij, *ai, *mi, *Ii;
     const dem_pair **q;
+    int *i;
 } hm_soa;
 
 static void soa_map(hm_soa *b, void *mem, size_t cap)
@@ -262,14 +267,16 @@ static void soa_map(hm_soa *b, void *mem, size_t cap)
     double **f[] = {&b->d0, &b->d1, &b->d2, &b->r2, &b->s, &b->msum, &b->mj, &b->aj,
                     &b->delta, &b->sq, &b->dn, &b->fcn, &b->meff, &b->idt,
                     &b->vn, &b->vt0, &b->vt1, &b->vt2, &b->hm2, &b->kt, &b->ct8, &b->cn8,
-                    &b->g, &b->sc, &b->q4, &b->wm2, &b->crol, &b->mur, &b->Ij};
+                    &b->g, &b->sc, &b->q4, &b->wm2, &b->crol, &b->mur, &b->Ij,
+                    &b->ai, &b->mi, &b->Ii};
     size_t nf = sizeof f / sizeof f[0];
     for (size_t a = 0; a < nf; ++a) { *f[a] = p; p += cap; }
     b->q = (const dem_pair **)p; p += cap;
     b->j = (int *)p;
     b->k = b->j + cap;
+    b->i = b->k + cap;
 }
-_Static_assert(31 * sizeof(double) <= DEM_SCRATCH_ENTRY, "scratch entry too small for the SoA buffers");
+_Static_assert(33 * sizeof(double) + 3 * sizeof(int) <= DEM_SCRATCH_ENTRY, "scratch entry too small for the SoA buffers");
 
 static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov, size_t *ncont)
 {
@@ -285,45 +292,53 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
     const double dtl = w->cfg.dt;  /* step of the rolling-torque limiter */
     hm_soa B;
     soa_map(&B, w->scratch, w->capscratch);
-    double *restrict Bd0 = B.d0, *restrict Bd1 = B.d1, *restrict Bd2 = B.d2, *restrict Br2 = B.r2, *restrict Bs = B.s, *restrict Bmsum = B.msum, *restrict Bmj = B.mj, *restrict Baj = B.aj, *restrict Bdelta = B.delta, *restrict Bsq = B.sq, *restrict Bdn = B.dn, *restrict Bfcn = B.fcn, *restrict Bmeff = B.meff, *restrict Bidt = B.idt, *restrict Bvn = B.vn, *restrict Bvt0 = B.vt0, *restrict Bvt1 = B.vt1, *restrict Bvt2 = B.vt2, *restrict Bhm2 = B.hm2, *restrict Bkt = B.kt, *restrict Bct8 = B.ct8, *restrict Bcn8 = B.cn8, *restrict Bg = B.g, *restrict Bsc = B.sc, *restrict Bq4 = B.q4, *restrict Bwm2 = B.wm2, *restrict Bcrol = B.crol, *restrict Bmur = B.mur, *restrict BIj = B.Ij;
-    int *restrict Bj = B.j, *restrict Bk = B.k;
-    const dem_pair **restrict Bq = B.q;
+    double *restrict Bd0 = B.d0, *restrict Bd1 = B.d1, *restrict Bd2 = B.d2, *restrict Br2 = B.r2,
+           *restrict Bs = B.s, *restrict Bmsum = B.msum, *restrict Bmj = B.mj, *restrict Baj = B.aj,
+           *restrict Bdelta = B.delta, *restrict Bsq = B.sq, *restrict Bdn = B.dn, *restrict Bfcn = B.fcn,
+           *restrict Bmeff = B.meff, *restrict Bidt = B.idt, *restrict Bvn = B.vn, *restrict Bvt0 = B.vt0,
+           *restrict Bvt1 = B.vt1, *restrict Bvt2 = B.vt2, *restrict Bhm2 = B.hm2, *restrict Bkt = B.kt,
+           *restrict Bct8 = B.ct8, *restrict Bcn8 = B.cn8, *restrict Bg = B.g, *restrict Bsc = B.sc,
+           *restrict Bq4 = B.q4, *restrict Bwm2 = B.wm2, *restrict Bcrol = B.crol, *restrict Bmur = B.mur,
+           *restrict BIj = B.Ij, *restrict Bai = B.ai, *restrict Bmi = B.mi, *restrict BIi = B.Ii;
+    int *restrict Bj = B.j, *restrict Bk = B.k, *restrict Bi = B.i;
     double movr = *maxov;
     size_t nct = 0;
     const size_t nrows = w->nrows;
-    for (size_t i = 0; i < nrows; ++i) {
-        const int k0 = off[i], k1 = off[i + 1];
-        if (k0 == k1) continue;
-        const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
-        const double ai = rad[i], mi = mass[i], Ii = 0.4 * mi * ai * ai;
-        const double *wi = om + 3 * i, *vi = v + 3 * i;
-        const dem_pair *prow = pt + (size_t)mat[i] * nm;
-        /* phase 1 (gather): which entries touch */
-        int nc = 0;
-        for (int k = k0; k < k1; ++k) {
-            const int j = nbj[k];
-            double d0 = xi0 - x[3 * j], d1 = xi1 - x[3 * j + 1], d2 = xi2 - x[3 * j + 2];
-            if (periodic) {
-                const double *sh = w->shift[nbs[k]];
-                d0 += sh[0]; d1 += sh[1]; d2 += sh[2];
+    int nc = 0;
+    for (size_t i = 0; i <= nrows; ++i) {
+        if (i < nrows) {
+            const int k0 = off[i], k1 = off[i + 1];
+            if (k0 == k1) continue;
+            const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
+            const double ai = rad[i], mi = mass[i], Ii = 0.4 * mi * ai * ai;
+            const dem_pair *prow = pt + (size_t)mat[i] * nm;
+            /* phase 1 (gather): which entries touch; appended to the block */
+            for (int k = k0; k < k1; ++k) {
+                const int j = nbj[k];
+                double d0 = xi0 - x[3 * j], d1 = xi1 - x[3 * j + 1], d2 = xi2 - x[3 * j + 2];
+                if (periodic) {
+                    const double *sh = w->shift[nbs[k]];
+                    d0 += sh[0]; d1 += sh[1]; d2 += sh[2];
+                }
+                const double aj = rad[j], s = ai + aj;
+                const double r2 = d0 * d0 + d1 * d1 + d2 * d2;
+                if (r2 >= s * s) {
+                    double *h = nbh + 3 * (size_t)k;
+                    if (h[0] != 0.0 || h[1] != 0.0 || h[2] != 0.0) h[0] = h[1] = h[2] = 0.0;
+                    continue;
+                }
+                const double mj = mass[j];
+                const dem_pair *q = prow + mat[j];
+                Bd0[nc] = d0; Bd1[nc] = d1; Bd2[nc] = d2; Br2[nc] = r2; Bs[nc] = s;
+                Bmj[nc] = mj; Bmsum[nc] = mi + mj; Baj[nc] = aj; BIj[nc] = 0.4 * mj * aj * aj;
+                Bai[nc] = ai; Bmi[nc] = mi; BIi[nc] = Ii;
+                Bcn8[nc] = q->cn8; Bct8[nc] = q->mu > 0.0 ? q->ct8 : 0.0;
+                Bkt[nc] = q->k43; Bsc[nc] = q->k43_mind; Bidt[nc] = q->imumind; Bg[nc] = q->mumind;
+                Bmur[nc] = q->mu_r;
+                Bi[nc] = (int)i; Bj[nc] = j; Bk[nc] = k;
+                nc++;
             }
-            const double aj = rad[j], s = ai + aj;
-            const double r2 = d0 * d0 + d1 * d1 + d2 * d2;
-            if (r2 >= s * s) {
-                double *h = nbh + 3 * (size_t)k;
-                if (h[0] != 0.0 || h[1] != 0.0 || h[2] != 0.0) h[0] = h[1] = h[2] = 0.0;
-                continue;
-            }
-            const double mj = mass[j];
-            const dem_pair *q = prow + mat[j];
-            Bd0[nc] = d0; Bd1[nc] = d1; Bd2[nc] = d2; Br2[nc] = r2; Bs[nc] = s;
-            Bmj[nc] = mj; Bmsum[nc] = mi + mj; Baj[nc] = aj; BIj[nc] = 0.4 * mj * aj * aj;
-            Bq[nc] = q;
-            Bcn8[nc] = q->cn8; Bct8[nc] = q->mu > 0.0 ? q->ct8 : 0.0;
-            Bkt[nc] = q->k43; Bsc[nc] = q->k43_mind; Bidt[nc] = q->imumind; Bg[nc] = q->mumind;
-            Bmur[nc] = q->mu_r;
-            Bj[nc] = j; Bk[nc] = k;
-            nc++;
+            if (nc < DEM_HM_BLOCK) continue;  /* rows are never split: buffer >= block + longest row */
         }
         if (nc == 0) continue;
         nct += (size_t)nc;
@@ -335,8 +350,8 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
             const double inv = 1.0 / (r * s * msum * delta);  /* 1/r, 1/s, 1/(mi+mj), 1/delta */
             const double ir = inv * s * msum * delta;
             Bd0[a] *= ir; Bd1[a] *= ir; Bd2[a] *= ir;
-            const double meff = mi * Bmj[a] * (inv * r * s * delta);
-            const double rstar = ai * Baj[a] * (inv * r * msum * delta);
+            const double meff = Bmi[a] * Bmj[a] * (inv * r * s * delta);
+            const double rstar = Bai[a] * Baj[a] * (inv * r * msum * delta);
             const double sq = sqrt(rstar * delta);
             const double k43 = Bkt[a];
             Bdelta[a] = delta;
@@ -345,7 +360,7 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
             Bdn[a] = sqrt(meff * sq);
             Bmeff[a] = Bg[a] * delta;                    /* delta_t,max = mu mindlin delta */
             Bidt[a] = Bidt[a] * (inv * r * s * msum);    /* 1/delta_t,max (mu = 0: 0) */
-            Bkt[a] = Bsc[a] * sq;                         /* mu f_cn / delta_t,max */
+            Bkt[a] = Bsc[a] * sq;                        /* mu f_cn / delta_t,max */
         }
         for (int a = 0; a < nc; ++a) {
             const double ov = Bdelta[a];
@@ -353,9 +368,9 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
         }
         /* phase 3 (gather): relative velocity, history update */
         for (int a = 0; a < nc; ++a) {
-            const int j = Bj[a];
-            const double aj = Baj[a];
-            const double *wj = om + 3 * j, *vj = v + 3 * j;
+            const int j = Bj[a], ii = Bi[a];
+            const double aj = Baj[a], ai = Bai[a];
+            const double *wj = om + 3 * j, *vj = v + 3 * j, *wi = om + 3 * ii, *vi = v + 3 * ii;
             const double n[3] = {Bd0[a], Bd1[a], Bd2[a]};
             const double W0 = ai * wi[0] + aj * wj[0], W1 = ai * wi[1] + aj * wj[1],
                          W2 = ai * wi[2] + aj * wj[2];
@@ -393,16 +408,15 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
             /* rolling: c = -min(mu_r f_cn / wm, Ii Ij / (dt (Ii + Ij))) */
             const double wm = sqrt(Bwm2[a]);
             const double wmsafe = wm > 0.0 ? wm : 1.0;
-            const double Ij = BIj[a], den = dtl * (Ii + Ij);
+            const double Ii = BIi[a], Ij = BIj[a], den = dtl * (Ii + Ij);
             const double inv2 = 1.0 / (wmsafe * den);
             const double c1 = Bmur[a] * Bfcn[a] * den * inv2, c2 = Ii * Ij * wmsafe * inv2;
             Bcrol[a] = wm > 0.0 ? -(c1 < c2 ? c1 : c2) : 0.0;
         }
         /* phase 5 (scatter): forces and torques */
-        double fi0 = 0, fi1 = 0, fi2 = 0, ti0 = 0, ti1 = 0, ti2 = 0;
         for (int a = 0; a < nc; ++a) {
-            const int j = Bj[a];
-            const double aj = Baj[a];
+            const int j = Bj[a], ii = Bi[a];
+            const double aj = Baj[a], ai = Bai[a];
             const double n0 = Bd0[a], n1 = Bd1[a], n2 = Bd2[a];
             double *h = nbh + 3 * (size_t)Bk[a];
             const double sc = Bsc[a];
@@ -413,17 +427,16 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
             const double ft2 = ce * h[2] + cd * Bvt2[a];
             const double fn = Bfcn[a] - Bcn8[a] * Bdn[a] * Bvn[a];
             const double F0 = fn * n0 + ft0, F1 = fn * n1 + ft1, F2 = fn * n2 + ft2;
-            fi0 += F0; fi1 += F1; fi2 += F2;
+            f[3 * ii] += F0; f[3 * ii + 1] += F1; f[3 * ii + 2] += F2;
             f[3 * j] -= F0; f[3 * j + 1] -= F1; f[3 * j + 2] -= F2;
             const double c0 = n1 * ft2 - n2 * ft1, c1 = n2 * ft0 - n0 * ft2, c2 = n0 * ft1 - n1 * ft0;
             const double cr = Bcrol[a];
-            const double *wj = om + 3 * j;
+            const double *wj = om + 3 * j, *wi = om + 3 * ii;
             const double M0 = cr * (wi[0] - wj[0]), M1 = cr * (wi[1] - wj[1]), M2 = cr * (wi[2] - wj[2]);
-            ti0 += M0 - ai * c0; ti1 += M1 - ai * c1; ti2 += M2 - ai * c2;
+            t[3 * ii] += M0 - ai * c0; t[3 * ii + 1] += M1 - ai * c1; t[3 * ii + 2] += M2 - ai * c2;
             t[3 * j] -= aj * c0 + M0; t[3 * j + 1] -= aj * c1 + M1; t[3 * j + 2] -= aj * c2 + M2;
         }
-        f[3 * i] += fi0; f[3 * i + 1] += fi1; f[3 * i + 2] += fi2;
-        t[3 * i] += ti0; t[3 * i + 1] += ti1; t[3 * i + 2] += ti2;
+        nc = 0;
     }
     *maxov = movr;
     *ncont = nct;

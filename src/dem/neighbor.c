@@ -284,6 +284,7 @@ dem_status dem_scratch_ensure(dem_world *w)
     for (size_t i = 0; i < w->nrows; ++i)
         if ((size_t)(w->nb_off[i + 1] - w->nb_off[i]) > maxrow)
             maxrow = (size_t)(w->nb_off[i + 1] - w->nb_off[i]);
+    maxrow += DEM_SCRATCH_EXTRA;
     if (maxrow <= w->capscratch) return DEM_OK;
     size_t nc = 2 * maxrow;
     void *sc = realloc(w->scratch, nc * DEM_SCRATCH_ENTRY);
