@@ -563,20 +563,33 @@ void Foam::demCoupling::addOutletsAndInlets()
         {
             p2[i] = vector2D((lp[i] - c0) & e1, (lp[i] - c0) & e2);
         }
-        const labelList hull(convexHull(p2));
-        List<double> poly(3*hull.size());
-        forAll(hull, k)
-        {
-            // shifted a little into the domain
-            const point x = c0 + p2[hull[k]].x()*e1 + p2[hull[k]].y()*e2;
-            for (direction j = 0; j < 3; ++j) poly[3*k+j] = x[j];
-        }
-
         PtrList<scalarField> store;
         dem_particle_template t;
         t.diameter = readDistribution(d, "diameter", store);
         t.density = readDistribution(d, "density", store);
         t.material = materialId(d.get<word>("material"), d);
+
+        // largest diameter of the distribution
+        scalar dMax = t.diameter.a;
+        switch (t.diameter.kind)
+        {
+            case DEM_DIST_UNIFORM: dMax = t.diameter.b; break;
+            case DEM_DIST_NORMAL: dMax = t.diameter.a + 3*t.diameter.b; break;
+            case DEM_DIST_DISCRETE: dMax = max(store[0]); break;
+            default: break;
+        }
+
+        // polygon: convex hull of the patch points in the patch plane,
+        // moved into the domain by 0.6 of the largest diameter so that new
+        // particles start inside the mesh
+        const labelList hull(convexHull(p2));
+        List<double> poly(3*hull.size());
+        forAll(hull, k)
+        {
+            const point x =
+                c0 + p2[hull[k]].x()*e1 + p2[hull[k]].y()*e2 - 0.6*dMax*n;
+            for (direction j = 0; j < 3; ++j) poly[3*k+j] = x[j];
+        }
         const vector v(d.getOrDefault<vector>("velocity", Zero));
         for (direction j = 0; j < 3; ++j) t.velocity[j] = v[j];
 
