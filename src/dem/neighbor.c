@@ -495,7 +495,7 @@ dem_status dem_list_build(dem_world *w)
                         double rc = ai + w->rad[j] + skin;
                         if (d0 * d0 + d1 * d1 + d2 * d2 >= rc * rc) continue;
                         if (cnt + 1 > w->capnb) {
-                            size_t ncap = w->capnb ? 2 * w->capnb : 16 * (np + 1);
+                            size_t ncap = w->capnb ? w->capnb + w->capnb / 2 + 64 : 8 * (np + 1);
                             int *a = realloc(w->nb_j, ncap * sizeof(int));
                             if (!a) { free(cs2); free(wcar); return DEM_FAIL(w, DEM_ERR_NOMEM, "list: %zu", ncap); }
                             w->nb_j = a;
@@ -522,6 +522,19 @@ dem_status dem_list_build(dem_world *w)
     }
     w->nnb = cnt;
     free(cs2);
+    /* trim the list storage to the need (+1/8): memory per particle */
+    {
+        size_t want = cnt + cnt / 8 + 64;
+        if (w->capnb > want + want / 2) {
+            int *a = realloc(w->nb_j, want * sizeof(int));
+            unsigned char *b = realloc(w->nb_s, want);
+            double *hh = realloc(w->nb_h, 3 * want * sizeof(double));
+            if (a) w->nb_j = a;
+            if (b) w->nb_s = b;
+            if (hh) w->nb_h = hh;
+            w->capnb = want; /* a block whose shrink failed is only larger than that */
+        }
+    }
     w->nrows = np;
     if ((st = dem_scratch_ensure(w))) { free(wcar); return st; }
 
