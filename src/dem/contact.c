@@ -322,10 +322,11 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
                 }
                 const double aj = rad[j], s = ai + aj;
                 const double r2 = d0 * d0 + d1 * d1 + d2 * d2;
-                if (r2 >= s * s) {
+                const int touch = r2 < s * s;
+                {   /* branch-free: a non-touching entry loses its history and is overwritten next */
                     double *h = nbh + 3 * (size_t)k;
-                    if (h[0] != 0.0 || h[1] != 0.0 || h[2] != 0.0) h[0] = h[1] = h[2] = 0.0;
-                    continue;
+                    const double keep = touch ? 1.0 : 0.0;
+                    h[0] *= keep; h[1] *= keep; h[2] *= keep;
                 }
                 const double mj = mass[j];
                 const dem_pair *q = prow + mat[j];
@@ -336,7 +337,7 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
                 Bkt[nc] = q->k43; Bsc[nc] = q->k43_mind; Bidt[nc] = q->imumind; Bg[nc] = q->mumind;
                 Bmur[nc] = q->mu_r;
                 Bi[nc] = (int)i; Bj[nc] = j; Bk[nc] = k;
-                nc++;
+                nc += touch;
             }
             if (nc < DEM_HM_BLOCK) continue;  /* rows are never split: buffer >= block + longest row */
         }
@@ -588,8 +589,10 @@ void dem_forces(dem_world *w, double hist_dt)
 {
     w->hdt = hist_dt;
     size_t np = w->n + w->ng;
-    memset(w->f, 0, 3 * np * sizeof(double));
-    memset(w->t, 0, 3 * np * sizeof(double));
+    if (np) {
+        memset(w->f, 0, 3 * np * sizeof(double));
+        memset(w->t, 0, 3 * np * sizeof(double));
+    }
     double movr = 0.0;
     size_t nct = 0;
     int per = w->cfg.periodic[0] || w->cfg.periodic[1] || w->cfg.periodic[2];

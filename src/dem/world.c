@@ -553,6 +553,7 @@ dem_status dem_world_stats(const dem_world *w, dem_stats *s)
 dem_status dem_world_particle_contacts(const dem_world *w, int *coord, double *force)
 {
     if (!w) return DEM_ERR_ARG;
+    if (w->n == 0) return DEM_OK;
     if (force) {
         if (w->forces_valid) memcpy(force, w->f, 3 * w->n * sizeof(double));
         else memset(force, 0, 3 * w->n * sizeof(double));
