@@ -56,34 +56,39 @@ static double max_wall_speed(const dem_world *w)
     return m;
 }
 
-static inline void kick1(dem_world *w, size_t i, double h, const double *g)
+/* nk (1 or 2) successive half kicks of particle i; two kicks are the same
+ * arithmetic as two single calls (bit-identical across call boundaries). */
+static inline void kick_n(dem_world *w, size_t i, double h, const double *g, int nk)
 {
     double *v = w->v + 3 * i, *om = w->w + 3 * i;
     const double *f = w->f + 3 * i, *t = w->t + 3 * i;
     const double m = w->mass[i], im = 1.0 / m;
     const double iI = 2.5 * im / (w->rad[i] * w->rad[i]);
-    if (!w->have_ext) {
-        for (int k = 0; k < 3; ++k) {
-            v[k] += h * (f[k] * im + g[k]);
-            om[k] += h * t[k] * iI;
+    for (int rep = 0; rep < nk; ++rep) {
+        if (!w->have_ext) {
+            for (int k = 0; k < 3; ++k) {
+                v[k] += h * (f[k] * im + g[k]);
+                om[k] += h * t[k] * iI;
+            }
+            continue;
         }
-        return;
-    }
-    const double *fe = w->fext + 3 * i, *te = w->text + 3 * i, *u = w->uf + 3 * i;
-    const double K = w->K[i];
-    if (K > 0) {
-        const double den = 1.0 / (1.0 + h * K * im);
-        double *J = w->J + 3 * i;
-        for (int k = 0; k < 3; ++k) {
-            double vn = (v[k] + h * ((f[k] + fe[k] + K * u[k]) * im + g[k])) * den;
-            J[k] += K * (u[k] - vn) * h;
-            v[k] = vn;
+        const double *fe = w->fext + 3 * i, *te = w->text + 3 * i, *u = w->uf + 3 * i;
+        const double K = w->K[i];
+        if (K > 0) {
+            const double den = 1.0 / (1.0 + h * K * im);
+            double *J = w->J + 3 * i;
+            for (int k = 0; k < 3; ++k) {
+                double vn = (v[k] + h * ((f[k] + fe[k] + K * u[k]) * im + g[k])) * den;
+                J[k] += K * (u[k] - vn) * h;
+                v[k] = vn;
+            }
+        } else {
+            for (int k = 0; k < 3; ++k) v[k] += h * ((f[k] + fe[k]) * im + g[k]);
         }
-    } else {
-        for (int k = 0; k < 3; ++k) v[k] += h * ((f[k] + fe[k]) * im + g[k]);
+        for (int k = 0; k < 3; ++k) om[k] += h * (t[k] + te[k]) * iI;
     }
-    for (int k = 0; k < 3; ++k) om[k] += h * (t[k] + te[k]) * iI;
 }
+static inline void kick1(dem_world *w, size_t i, double h, const double *g) { kick_n(w, i, h, g, 1); }
 
 dem_status dem_world_step(dem_world *w, int64_t nsteps)
 {
@@ -114,8 +119,7 @@ dem_status dem_world_step(dem_world *w, int64_t nsteps)
         double d2max = 0;
         const size_t n = w->n;
         for (size_t i = 0; i < n; ++i) {
-            if (s > 0) kick1(w, i, h, g);
-            kick1(w, i, h, g);
+            kick_n(w, i, h, g, s > 0 ? 2 : 1);
             double *x = w->x + 3 * i;
             const double *v = w->v + 3 * i;
             const float *x0 = w->x0 + 3 * i;
