@@ -64,7 +64,9 @@ static inline void hm_force(const dem_pair *q, double dt, const double n[3], dou
         double dtmax = q->mumind * delta;                           /* delta_t,max */
         double hm2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
         double kt = q->k43_mind * sq;                               /* mu |f_cn| / delta_t,max */
-        if (hm2 >= dtmax * dtmax) {                                 /* Coulomb sliding */
+        if (!(dtmax > 0.0)) {                                       /* delta rounded to 0 */
+            h[0] = h[1] = h[2] = 0.0;
+        } else if (hm2 >= dtmax * dtmax) {                          /* Coulomb sliding */
             double s = dtmax / sqrt(hm2);
             h[0] *= s; h[1] *= s; h[2] *= s;
             ft[0] = -kt * h[0]; ft[1] = -kt * h[1]; ft[2] = -kt * h[2];   /* -mu |f_cn| h/|h| */
@@ -347,12 +349,13 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
         DEM_IVDEP
         for (int a = 0; a < nc; ++a) {
             const double r = sqrt(Br2[a]), s = Bs[a], msum = Bmsum[a];
-            const double delta = s - r;
-            const double inv = 1.0 / (r * s * msum * delta);  /* 1/r, 1/s, 1/(mi+mj), 1/delta */
-            const double ir = inv * s * msum * delta;
+            const double delta = s - r;            /* may round to 0 although r2 < s^2 */
+            const double ds = delta > 0.0 ? delta : s;
+            const double inv = 1.0 / (r * s * msum * ds);  /* 1/r, 1/s, 1/(mi+mj), 1/delta */
+            const double ir = inv * s * msum * ds;
             Bd0[a] *= ir; Bd1[a] *= ir; Bd2[a] *= ir;
-            const double meff = Bmi[a] * Bmj[a] * (inv * r * s * delta);
-            const double rstar = Bai[a] * Baj[a] * (inv * r * msum * delta);
+            const double meff = Bmi[a] * Bmj[a] * (inv * r * s * ds);
+            const double rstar = Bai[a] * Baj[a] * (inv * r * msum * ds);
             const double sq = sqrt(rstar * delta);
             const double k43 = Bkt[a];
             Bdelta[a] = delta;
