@@ -19,6 +19,10 @@
   setup does before its loop timer starts), then NSTEPS steps in one
   dem_world_step call timed with clock_gettime(CLOCK_MONOTONIC).
 
+  Memory: dem_world_memory() (particle arrays; neighbour/wall lists with
+  their contact history), and VmRSS/VmHWM of this process minus their values
+  before the world was created.
+
   Output: key=value lines on stdout, read by bench/dem/run.
 \*---------------------------------------------------------------------------*/
 #define _POSIX_C_SOURCE 200809L
@@ -175,6 +179,8 @@ int main(int argc, char **argv)
 
     double t0 = now();
     if (check(w, dem_world_step(w, 1), "dem_world_step (first, untimed)")) return 1;
+    dem_stats s0;
+    if (check(w, dem_world_stats(w, &s0), "dem_world_stats")) return 1;
     double t1 = now(), c1 = cpu_now();
     if (check(w, dem_world_step(w, nsteps), "dem_world_step")) return 1;
     double t2 = now(), c2 = cpu_now();
@@ -189,6 +195,8 @@ int main(int argc, char **argv)
     free(coord);
 
     long rss1 = status_kb("VmRSS"), hwm1 = status_kb("VmHWM");
+    size_t mem_particles = 0, mem_lists = 0;
+    int have_mem = dem_world_memory(w, &mem_particles, &mem_lists) == DEM_OK;
 
     /* bytes per particle in the arrays the API exposes (dem_arrays) */
     size_t api_bytes = sizeof(int64_t) + 3 * 3 * sizeof(double) /* x v omega */
@@ -202,13 +210,18 @@ int main(int argc, char **argv)
     printf("ours_loop_seconds=%.6f\n", t2 - t1);
     printf("ours_loop_cpu_seconds=%.6f\n", c2 - c1);
     printf("ours_particle_steps_per_second=%.6g\n", (double)np * (double)nsteps / (t2 - t1));
+    printf("ours_list_builds_in_loop=%lld\n", (long long)(s.list_builds - s0.list_builds));
     printf("ours_pair_contacts=%zu\n", s.pair_contacts);
     printf("ours_wall_contacts=%zu\n", s.wall_contacts);
     printf("ours_coordination=%.4f\n", np ? zsum / (double)np : 0.0);
     printf("ours_kinetic_energy=%.6g\n", s.kinetic_energy);
     printf("ours_rotational_energy=%.6g\n", s.rotational_energy);
     printf("ours_max_overlap_ratio=%.6g\n", s.max_overlap_ratio);
-    printf("ours_api_array_bytes_per_particle=%zu\n", api_bytes);
+    printf("ours_api_arrays_incl_coupling_bytes_per_particle=%zu\n", api_bytes);
+    if (have_mem) {
+        printf("ours_array_bytes_per_particle=%.1f\n", (double)mem_particles / (double)np);
+        printf("ours_list_and_history_bytes_per_particle=%.1f\n", (double)mem_lists / (double)np);
+    }
     printf("ours_rss_delta_bytes_per_particle=%.1f\n", 1024.0 * (double)(rss1 - rss0) / (double)np);
     printf("ours_hwm_delta_bytes_per_particle=%.1f\n", 1024.0 * (double)(hwm1 - hwm0) / (double)np);
     printf("ours_log_messages=%ld/%ld/%ld\n", n_log[0], n_log[1], n_log[2]);
