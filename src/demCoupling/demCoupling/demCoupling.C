@@ -152,6 +152,14 @@ Foam::demCoupling::demCoupling
     tauCoeff_(fieldIO(mesh, "viscousCoeff", false), mesh,
             dimensionedScalar("one", dimless, 1.0), "zeroGradient")
 {
+    if (Pstream::parRun())
+    {
+        FatalErrorInFunction
+            << "demFoam runs serial only for now: the DEM particle ownership "
+            << "across processors (ghosts, migration) is not implemented in "
+            << "the coupling; run without -parallel" << exit(FatalError);
+    }
+
     const word scheme(dict_.getOrDefault<word>("dragScheme", "perParticle"));
     if (scheme == "cellMean")
     {
