@@ -5,6 +5,7 @@
  * spatial re-sorting).  Also: pack/unpack round trip of one particle with
  * its contact history, and a corrupt file is refused. */
 #include "check.h"
+#include <time.h>
 
 static int floor_inside(const double x[3], void *user) { (void)user; return x[2] > 0.004; }
 
@@ -69,7 +70,12 @@ static int same(dem_world *a, dem_world *b, double *maxdiff)
 
 int main(void)
 {
-    const char *path = "dem_restart_test.state";
+    /* outside the source tree, unique per run (normal and sanitizer runs may overlap) */
+    char path[512];
+    const char *tmp = getenv("TMPDIR");
+    int here;
+    snprintf(path, sizeof path, "%s/dem_restart_test_%lx_%lx.state", tmp && *tmp ? tmp : "/tmp",
+             (unsigned long)time(NULL), (unsigned long)(size_t)&here);
     const int64_t n1 = QUICK ? 2000 : 6000, n2 = QUICK ? 2000 : 6000;
     dem_world *a = setup(), *b = setup();
     TRY(a, dem_world_step(a, n1 + n2));
