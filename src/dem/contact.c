@@ -33,7 +33,7 @@ static inline void rotate_history(double *h, const double n[3])
         /* rescale to the old length; skipped when the factor
            sqrt(1 + hn^2/h2n) rounds to 1 anyway */
         if (h2n > 0.0 && hn * hn > 1e-17 * h2n) {
-            double s = sqrt(h2 / h2n);
+            double s = sqrt(h2 / (h2n + (h2n > 0.0 ? 0.0 : 1.0)));
             h[0] *= s; h[1] *= s; h[2] *= s;
         }
     }
@@ -67,15 +67,16 @@ static inline void hm_force(const dem_pair *q, double dt, const double n[3], dou
         if (!(dtmax > 0.0)) {                                       /* delta rounded to 0 */
             h[0] = h[1] = h[2] = 0.0;
         } else if (hm2 >= dtmax * dtmax) {                          /* Coulomb sliding */
-            double s = dtmax / sqrt(hm2);
+            double s = dtmax / sqrt(hm2 + (hm2 > 0.0 ? 0.0 : 1.0));
             h[0] *= s; h[1] *= s; h[2] *= s;
             ft[0] = -kt * h[0]; ft[1] = -kt * h[1]; ft[2] = -kt * h[2];   /* -mu |f_cn| h/|h| */
         } else {
             double r = 1.0, c = 0.0;
             if (hm2 > 0.0) {
-                double hm = sqrt(hm2), inv = 1.0 / (hm * dtmax);
+                double hm = sqrt(hm2), inv = 1.0 / ((hm + (hm > 0.0 ? 0.0 : 1.0)) * dtmax);
                 double x = hm * hm * inv;                           /* |h| / delta_t,max */
                 r = 1.0 - x;
+                r = 0.5 * (r + fabs(r));
                 double sr = sqrt(r);
                 /* mu f_cn (1 - r^(3/2)) / |h| = kt (1 - r^(3/2)) / x */
                 c = -kt * (1.0 - r * sr) * dtmax * dtmax * inv;
@@ -111,11 +112,12 @@ static inline void sd_force(const dem_pair *q, double dt, const double n[3], dou
         double ftm = sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
         double lim = q->mu * fabs(fn);
         if (ftm > lim) {
-            double s = lim / ftm;
+            double s = lim / (ftm + (ftm > 0.0 ? 0.0 : 1.0));
+            double fs = fscale + (fscale > 0.0 ? 0.0 : 1.0), on = fscale > 0.0 ? 1.0 : 0.0;
             for (int k = 0; k < 3; ++k) {
                 ft[k] *= s;
                 /* keep the spring consistent with the truncated force */
-                h[k] = fscale > 0 ? -(ft[k] / fscale + etat * vt[k]) / q->kt : 0.0;
+                h[k] = on * -(ft[k] / fs + etat * vt[k]) / q->kt;
             }
         }
     } else {
@@ -137,8 +139,9 @@ static inline void rolling(double mu_r, double fel, const double *wi, const doub
     double wm = sqrt(wm2), m = mu_r * fel, c;
     /* limit m <= wm Ii Ij / (dt (Ii + Ij)); wall (Ij -> inf): wm Ii / dt */
     double num = Ij > 0 ? Ii * Ij : Ii, den = Ij > 0 ? dt * (Ii + Ij) : dt;
-    if (m * den > wm * num) c = -num / den;
-    else c = -m / wm;
+    double inv = 1.0 / ((wm + (wm > 0.0 ? 0.0 : 1.0)) * (den + (den > 0.0 ? 0.0 : 1.0)));
+    if (m * den > wm * num) c = -num * wm * inv;
+    else c = -m * den * inv;
     M[0] = c * wr[0]; M[1] = c * wr[1]; M[2] = c * wr[2];
 }
 
@@ -184,7 +187,7 @@ static inline void pair_loop(dem_world *w, const int law, const int periodic,
                 continue;
             }
             const double r = sqrt(r2), mj = mass[j], msum = mi + mj;
-            const double inv = 1.0 / (r * s * msum);  /* one division for 1/r, 1/s, 1/(mi+mj) */
+            const double inv = 1.0 / ((r + (r > 0.0 ? 0.0 : 1.0)) * s * msum);  /* one division for 1/r, 1/s, 1/(mi+mj) */
             const double ir = inv * s * msum;
             const double n[3] = {d0 * ir, d1 * ir, d2 * ir};
             const double delta = s - r;
@@ -214,7 +217,7 @@ static inline void pair_loop(dem_world *w, const int law, const int periodic,
             t[3 * j] -= aj * c0; t[3 * j + 1] -= aj * c1; t[3 * j + 2] -= aj * c2;
             if (q->mu_r > 0.0) {
                 double M[3];
-                rolling(q->mu_r, fel, wi, wj, 0.4 * mi * ai * ai, 0.4 * mj * aj * aj, dt, M);
+                rolling(q->mu_r, fel, wi, wj, 0.4 * mi * ai * ai, 0.4 * mj * aj * aj, w->cfg.dt, M);
                 ti0 += M[0]; ti1 += M[1]; ti2 += M[2];
                 t[3 * j] -= M[0]; t[3 * j + 1] -= M[1]; t[3 * j + 2] -= M[2];
             }
@@ -348,9 +351,10 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
         /* phase 2 (vector): geometry, normal force */
         DEM_IVDEP
         for (int a = 0; a < nc; ++a) {
-            const double r = sqrt(Br2[a]), s = Bs[a], msum = Bmsum[a];
+            const double r0 = sqrt(Br2[a]), s = Bs[a], msum = Bmsum[a];
+            const double r = r0 + (r0 > 0.0 ? 0.0 : s);  /* coincident centres: treated as delta = 0 */
             const double delta = s - r;            /* may round to 0 although r2 < s^2 */
-            const double ds = delta > 0.0 ? delta : s;
+            const double ds = delta + (delta > 0.0 ? 0.0 : s);  /* no select around the division */
             const double inv = 1.0 / (r * s * msum * ds);  /* 1/r, 1/s, 1/(mi+mj), 1/delta */
             const double ir = inv * s * msum * ds;
             Bd0[a] *= ir; Bd1[a] *= ir; Bd2[a] *= ir;
@@ -399,11 +403,14 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
         /* phase 4 (vector): tangential law factors, rolling factor */
         DEM_IVDEP
         for (int a = 0; a < nc; ++a) {
+            /* clamps and guards are arithmetic (no select feeding sqrt or a
+               division), so no floating-point exception can be raised even
+               where the compiler evaluates both sides of a select */
             const double hm = sqrt(Bhm2[a]);
-            double xx = hm * Bidt[a];
-            xx = xx < 1.0 ? xx : 1.0;
-            const double r = 1.0 - xx, sr = sqrt(r);
-            const double hmsafe = hm > 0.0 ? hm : 1.0;
+            const double r1 = 1.0 - hm * Bidt[a];
+            const double r = 0.5 * (r1 + fabs(r1));              /* max(1 - x, 0) */
+            const double sr = sqrt(r);
+            const double hmsafe = hm + (hm > 0.0 ? 0.0 : 1.0);
             const double inv = 1.0 / (hmsafe * (1.0 + sr));
             const double dtmax_over_hm = Bmeff[a] * (1.0 + sr) * inv;  /* dtmax / |h| */
             Bsc[a] = dtmax_over_hm < 1.0 ? dtmax_over_hm : 1.0;
@@ -411,7 +418,7 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
             Bq4[a] = sqrt(sr);
             /* rolling: c = -min(mu_r f_cn / wm, Ii Ij / (dt (Ii + Ij))) */
             const double wm = sqrt(Bwm2[a]);
-            const double wmsafe = wm > 0.0 ? wm : 1.0;
+            const double wmsafe = wm + (wm > 0.0 ? 0.0 : 1.0);
             const double Ii = BIi[a], Ij = BIj[a], den = dtl * (Ii + Ij);
             const double inv2 = 1.0 / (wmsafe * den);
             const double c1 = Bmur[a] * Bfcn[a] * den * inv2, c2 = Ii * Ij * wmsafe * inv2;
@@ -578,7 +585,7 @@ static void wall_loop(dem_world *w, int law)
             int wall = w->wc_wall[k];
             const dem_mesh *m = &w->meshes[w->wall_index[wall]];
             double d = sqrt(mc[a].d2), n[3];
-            if (d > 0) for (int c = 0; c < 3; ++c) n[c] = (xi[c] - mc[a].cp[c]) / d;
+            if (d > 0) for (int c = 0; c < 3; ++c) n[c] = (xi[c] - mc[a].cp[c]) / (d + (d > 0.0 ? 0.0 : 1.0));
             else {
                 const double *tn = m->nrm + 3 * w->wc_tri[k];
                 for (int c = 0; c < 3; ++c) n[c] = tn[c];

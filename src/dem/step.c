@@ -103,7 +103,9 @@ dem_status dem_world_step(dem_world *w, int64_t nsteps)
     if (w->n) {
         double tc;
         double vimp = 2.0 * vmax + vw;
-        dem_contact_time_internal(w, vimp, 1, &tc);
+        int rayleigh = 1;
+        if (w->cfg.impact_speed > 0) { vimp = fmax(vimp, w->cfg.impact_speed); rayleigh = 0; }
+        dem_contact_time_internal(w, vimp, rayleigh, &tc);
         if (w->cfg.dt > w->cfg.max_dt_fraction * tc)
             return DEM_FAIL(w, DEM_ERR_TIMESTEP, "dt = %g exceeds max_dt_fraction %g x smallest contact "
                             "time %g s (impact speed %g m/s) = %g s", w->cfg.dt, w->cfg.max_dt_fraction,

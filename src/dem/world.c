@@ -152,6 +152,8 @@ dem_status dem_world_configure(dem_world *w, const dem_config *c)
         return DEM_FAIL(w, DEM_ERR_RANGE, "skin = %g; must be finite", c->skin);
     if (!(c->max_dt_fraction > 0))
         return DEM_FAIL(w, DEM_ERR_RANGE, "max_dt_fraction = %g; allowed > 0", c->max_dt_fraction);
+    if (!(c->impact_speed >= 0) || !isfinite(c->impact_speed))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "impact_speed = %g; allowed >= 0", c->impact_speed);
     if (!(c->max_overlap_ratio > 0))
         return DEM_FAIL(w, DEM_ERR_RANGE, "max_overlap_ratio = %g; allowed > 0", c->max_overlap_ratio);
     if (w->n + w->ng > 0) {
@@ -169,6 +171,7 @@ dem_status dem_world_configure(dem_world *w, const dem_config *c)
         w->cfg.max_dt_fraction = c->max_dt_fraction;
         w->cfg.max_overlap_ratio = c->max_overlap_ratio;
         w->cfg.spatial_sort = c->spatial_sort;
+        w->cfg.impact_speed = c->impact_speed;
         return DEM_OK;
     }
     uint64_t old_seed = w->cfg.seed;

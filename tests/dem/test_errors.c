@@ -80,6 +80,15 @@ int main(void)
     c.dt = 0.1 * tc;
     TRY(w, dem_world_configure(w, &c));
     check_status("dt = 0.1 t_contact accepted", dem_world_step(w, 1), DEM_OK);
+    /* impact_speed > 0: Hertz time at that speed instead of the Rayleigh time */
+    double th;
+    TRY(w, dem_world_contact_time(w, 1.0, &th));
+    c.dt = 0.3 * tc;
+    c.impact_speed = 1.0;
+    TRY(w, dem_world_configure(w, &c));
+    check_status(0.3 * tc < 0.2 * th ? "dt = 0.3 t_Rayleigh accepted with impact_speed 1 m/s (< 0.2 t_Hertz)"
+                                     : "(setup) dt between the limits", dem_world_step(w, 1), DEM_OK);
+    c.impact_speed = 0.0;
     c.dt = -1;
     check_status("error dt < 0", dem_world_configure(w, &c), DEM_ERR_RANGE);
     c.dt = 1e-6;

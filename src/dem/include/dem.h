@@ -92,6 +92,10 @@ typedef struct {
     uint64_t seed;           /* random seed for insertion */
     int    spatial_sort;     /* added: 1 (default) re-sorts owned particles by cell at each
                                 neighbour-list build (storage order changes; use id) */
+    double impact_speed;     /* added: Hertz laws' time-step check.  0 (default): dt is checked
+                                against min(Rayleigh time, Hertz time at 2 max|v| + max wall speed);
+                                > 0: against the Hertz time at max(impact_speed, 2 max|v| + wall
+                                speed) only (no Rayleigh time) */
 } dem_config;
 
 /** Fill c with defaults: Hertz-Mindlin, dt 1e-6, gravity (0,0,-9.81), unit box, non-periodic. */
@@ -160,7 +164,11 @@ int64_t    dem_world_step_count(const dem_world *w);
  *  only while it is unchanged. */
 int64_t    dem_world_reorder_count(const dem_world *w);
 
-/** Advance nsteps time steps (velocity Verlet; drag semi-implicit). */
+/** Advance nsteps time steps (velocity Verlet; drag semi-implicit).
+ *  The contact kernel is built with -fno-trapping-math and written so that
+ *  it raises no division-by-zero/invalid/overflow flags (tested with traps
+ *  on, tests/dem/test_fpe.c); a caller running with traps may still prefer
+ *  to hold them around the call (feholdexcept) as defence in depth. */
 dem_status dem_world_step(dem_world *w, int64_t nsteps);
 
 /** Smallest contact time estimate over the material pairs and particle
@@ -168,6 +176,10 @@ dem_status dem_world_step(dem_world *w, int64_t nsteps);
 dem_status dem_world_contact_time(const dem_world *w, double impact_speed, double *t_contact);
 
 /*--- walls --------------------------------------------------------------------*/
+/** Infinite plane through point with the given normal, which must point INTO
+ *  the domain (towards the particles): a particle interacts when its signed
+ *  distance d = (x - point).normal lies in (-a, a); the overlap is a - d.
+ *  (Triangle-mesh walls are two-sided; their orientation does not matter.) */
 dem_status dem_world_add_plane(dem_world *w, const double point[3], const double normal[3],
                                int material, const double velocity[3], int *wall_id);
 /** Triangle mesh wall: vertices 3*nv doubles, triangles 3*ntri vertex indices.
