@@ -49,6 +49,8 @@ typedef struct {
     double nu;
 } dem_pair;
 
+typedef struct { int a, b; dem_material m; } dem_pair_override;
+
 typedef struct {
     double x0[3];        /* point at t = t0 */
     double n[3];         /* unit normal */
@@ -107,6 +109,8 @@ struct dem_world {
     dem_material *mat;       /* as given by the user */
     double *mat_e, *mat_c;   /* derived restitution / damping per material (cache) */
     int nmat_derived;        /* materials [0, nmat_derived) have mat_e/mat_c */
+    dem_pair_override *ovr;  /* dem_world_set_pair */
+    int novr;
     int derived_law;
     dem_pair *pair;          /* nmat*nmat, valid when !pairs_dirty */
     int pairs_dirty;

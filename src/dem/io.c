@@ -44,6 +44,8 @@ static void save_world(wio *o, const dem_world *w)
     PUT(o, w->cfg);
     PUT(o, w->nmat);
     put(o, w->mat, (size_t)w->nmat * sizeof *w->mat);
+    PUT(o, w->novr);
+    put(o, w->ovr, (size_t)w->novr * sizeof *w->ovr);
     uint64_t n = w->n, ng = w->ng;
     size_t np = w->n + w->ng;
     PUT(o, n); PUT(o, ng); PUT(o, w->next_id); PUT(o, w->have_ext);
@@ -144,6 +146,10 @@ static dem_status load_world(wio *o, dem_world *w, const char *path, dem_world *
     w->capmat = w->nmat;
     if (w->nmat) { w->mat = malloc((size_t)w->nmat * sizeof *w->mat); CHECK_ALLOC(w->mat); }
     get(o, w->mat, (size_t)w->nmat * sizeof *w->mat);
+    GET(o, w->novr);
+    if (o->bad || w->novr < 0 || w->novr > 1000000) goto bad;
+    if (w->novr) { w->ovr = malloc((size_t)w->novr * sizeof *w->ovr); CHECK_ALLOC(w->ovr); }
+    get(o, w->ovr, (size_t)w->novr * sizeof *w->ovr);
     w->pairs_dirty = 1;
     uint64_t n = 0, ng = 0;
     GET(o, n); GET(o, ng); GET(o, w->next_id); GET(o, w->have_ext);

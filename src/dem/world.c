@@ -111,7 +111,7 @@ void dem_world_destroy(dem_world **pw)
 {
     if (!pw || !*pw) return;
     dem_world *w = *pw;
-    free(w->mat); free(w->pair); free(w->mat_e); free(w->mat_c);
+    free(w->mat); free(w->pair); free(w->mat_e); free(w->mat_c); free(w->ovr);
     free(w->id); free(w->x); free(w->v); free(w->w); free(w->f); free(w->t);
     free(w->rad); free(w->mass); free(w->rho); free(w->mat_of); free(w->x0);
     free(w->list_index);
@@ -189,9 +189,56 @@ int64_t dem_world_step_count(const dem_world *w) { return w ? w->step : 0; }
 int64_t dem_world_reorder_count(const dem_world *w) { return w ? w->reorders : 0; }
 
 /*--- materials -----------------------------------------------------------------*/
+static dem_status material_check(dem_world *w, const dem_material *m);
+
 dem_status dem_world_add_material(dem_world *w, const dem_material *m, int *material_id)
 {
     if (!w || !m) return DEM_ERR_ARG;
+    dem_status st = material_check(w, m);
+    if (st) return st;
+    if (w->nmat == w->capmat) {
+        int nc = w->capmat ? 2 * w->capmat : 4;
+        dem_material *p = realloc(w->mat, (size_t)nc * sizeof *p);
+        if (!p) return DEM_FAIL(w, DEM_ERR_NOMEM, "materials: %d entries", nc);
+        w->mat = p;
+        w->capmat = nc;
+    }
+    dem_material mm = *m;
+    if (!(mm.stiffness_t > 0)) mm.stiffness_t = 2.0 / 7.0 * mm.stiffness_n;
+    w->mat[w->nmat] = mm;
+    if (material_id) *material_id = w->nmat;
+    w->nmat++;
+    if (w->nmat_derived >= w->nmat) w->nmat_derived = w->nmat - 1;
+    w->pairs_dirty = 1;
+    return DEM_OK;
+}
+
+dem_status dem_world_set_pair(dem_world *w, int material_a, int material_b, const dem_material *m)
+{
+    if (!w || !m) return DEM_ERR_ARG;
+    if (material_a < 0 || material_a >= w->nmat || material_b < 0 || material_b >= w->nmat)
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "set_pair: materials %d, %d; %d defined", material_a, material_b, w->nmat);
+    dem_status st = material_check(w, m);
+    if (st) return st;
+    int k = 0;
+    while (k < w->novr && !((w->ovr[k].a == material_a && w->ovr[k].b == material_b) ||
+                            (w->ovr[k].a == material_b && w->ovr[k].b == material_a))) ++k;
+    if (k == w->novr) {
+        dem_pair_override *o = realloc(w->ovr, (size_t)(w->novr + 1) * sizeof *o);
+        if (!o) return DEM_FAIL(w, DEM_ERR_NOMEM, "pair overrides");
+        w->ovr = o;
+        w->novr++;
+    }
+    w->ovr[k].a = material_a;
+    w->ovr[k].b = material_b;
+    w->ovr[k].m = *m;
+    if (!(w->ovr[k].m.stiffness_t > 0)) w->ovr[k].m.stiffness_t = 2.0 / 7.0 * w->ovr[k].m.stiffness_n;
+    w->pairs_dirty = 1;
+    return DEM_OK;
+}
+
+static dem_status material_check(dem_world *w, const dem_material *m)
+{
     if (!(m->poisson_ratio >= 0.0 && m->poisson_ratio < 0.5))
         return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: poisson_ratio = %g; allowed [0, 0.5)",
                         w->nmat, m->poisson_ratio);
@@ -222,20 +269,6 @@ dem_status dem_world_add_material(dem_world *w, const dem_material *m, int *mate
     if (!hertz && !(m->stiffness_n > 0))
         return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: stiffness_n = %g; allowed > 0 (law %s)",
                         w->nmat, m->stiffness_n, law_names[w->cfg.contact_law]);
-    if (w->nmat == w->capmat) {
-        int nc = w->capmat ? 2 * w->capmat : 4;
-        dem_material *p = realloc(w->mat, (size_t)nc * sizeof *p);
-        if (!p) return DEM_FAIL(w, DEM_ERR_NOMEM, "materials: %d entries", nc);
-        w->mat = p;
-        w->capmat = nc;
-    }
-    dem_material mm = *m;
-    if (!(mm.stiffness_t > 0)) mm.stiffness_t = 2.0 / 7.0 * mm.stiffness_n;
-    w->mat[w->nmat] = mm;
-    if (material_id) *material_id = w->nmat;
-    w->nmat++;
-    if (w->nmat_derived >= w->nmat) w->nmat_derived = w->nmat - 1;
-    w->pairs_dirty = 1;
     return DEM_OK;
 }
 
@@ -267,6 +300,41 @@ dem_status dem_world_material_get(const dem_world *w, int id, dem_material *m)
     return DEM_OK;
 }
 
+/* Combined parameters of one material pair (combination rules of dem.h). */
+static void pair_compute(int law, const dem_material *a, double ea, double ca, const dem_material *b,
+                         double eb, double cb, int like, dem_pair *q)
+{
+    memset(q, 0, sizeof *q);
+    q->mu = fmin(a->friction, b->friction);
+    q->mu_r = fmin(a->rolling_friction, b->rolling_friction);
+    q->nu = 0.5 * (a->poisson_ratio + b->poisson_ratio);
+    q->mindlin = (2.0 - q->nu) / (2.0 * (1.0 - q->nu));
+    if (law == DEM_CONTACT_HERTZ_MINDLIN) {
+        q->estar = 1.0 / ((1.0 - a->poisson_ratio * a->poisson_ratio) / a->youngs_modulus +
+                          (1.0 - b->poisson_ratio * b->poisson_ratio) / b->youngs_modulus);
+        q->e = fmin(ea, eb);
+        q->cn = q->ct = (ea <= eb) ? ca : cb;
+        q->k43 = 4.0 / 3.0 * q->estar;
+        q->cn8 = q->cn * sqrt(8.0 * q->estar);
+        q->mumind = q->mu * q->mindlin;
+        q->imumind = q->mumind > 0 ? 1.0 / q->mumind : 0.0;
+        q->k43_mind = q->k43 / q->mindlin;
+        q->ct8 = q->ct * sqrt(8.0 * q->estar / q->mindlin);
+    } else {
+        q->kn = like ? a->stiffness_n : a->stiffness_n * b->stiffness_n / (a->stiffness_n + b->stiffness_n);
+        q->kt = like ? a->stiffness_t : a->stiffness_t * b->stiffness_t / (a->stiffness_t + b->stiffness_t);
+        if (ea > 0 && eb > 0) {
+            q->e = fmin(ea, eb);
+            q->beta = dem_lsd_beta(q->e);
+            q->eta_fixed = -1.0;
+        } else {
+            q->e = -1.0;
+            q->eta_fixed = fmax(ea > 0 ? -1.0 : ca, eb > 0 ? -1.0 : cb);
+            q->beta = 0.0;
+        }
+    }
+}
+
 dem_status dem_pairs_update(dem_world *w)
 {
     if (!w->pairs_dirty) return DEM_OK;
@@ -295,43 +363,17 @@ dem_status dem_pairs_update(dem_world *w)
         w->nmat_derived = nm;
         w->derived_law = law;
     }
-    for (int i = 0; i < nm; ++i) {
-        for (int j = 0; j < nm; ++j) {
-            const dem_material *a = &w->mat[i], *b = &w->mat[j];
-            dem_pair *q = &p[i * nm + j];
-            memset(q, 0, sizeof *q);
-            double ea = w->mat_e[i], ca = w->mat_c[i], eb = w->mat_e[j], cb = w->mat_c[j];
-            q->mu = fmin(a->friction, b->friction);
-            q->mu_r = fmin(a->rolling_friction, b->rolling_friction);
-            q->nu = 0.5 * (a->poisson_ratio + b->poisson_ratio);
-            q->mindlin = (2.0 - q->nu) / (2.0 * (1.0 - q->nu));
-            if (law == DEM_CONTACT_HERTZ_MINDLIN) {
-                q->estar = 1.0 / ((1.0 - a->poisson_ratio * a->poisson_ratio) / a->youngs_modulus +
-                                  (1.0 - b->poisson_ratio * b->poisson_ratio) / b->youngs_modulus);
-                q->e = fmin(ea, eb);
-                q->cn = q->ct = (ea <= eb) ? ca : cb;
-                q->k43 = 4.0 / 3.0 * q->estar;
-                q->cn8 = q->cn * sqrt(8.0 * q->estar);
-                q->mumind = q->mu * q->mindlin;
-                q->imumind = q->mumind > 0 ? 1.0 / q->mumind : 0.0;
-                q->k43_mind = q->k43 / q->mindlin;
-                q->ct8 = q->ct * sqrt(8.0 * q->estar / q->mindlin);
-            } else {
-                q->kn = (i == j) ? a->stiffness_n
-                                 : a->stiffness_n * b->stiffness_n / (a->stiffness_n + b->stiffness_n);
-                q->kt = (i == j) ? a->stiffness_t
-                                 : a->stiffness_t * b->stiffness_t / (a->stiffness_t + b->stiffness_t);
-                if (ea > 0 && eb > 0) {
-                    q->e = fmin(ea, eb);
-                    q->beta = dem_lsd_beta(q->e);
-                    q->eta_fixed = -1.0;
-                } else {
-                    q->e = -1.0;
-                    q->eta_fixed = fmax(ea > 0 ? -1.0 : ca, eb > 0 ? -1.0 : cb);
-                    q->beta = 0.0;
-                }
-            }
-        }
+    for (int i = 0; i < nm; ++i)
+        for (int j = 0; j < nm; ++j)
+            pair_compute(law, &w->mat[i], w->mat_e[i], w->mat_c[i], &w->mat[j], w->mat_e[j], w->mat_c[j],
+                         i == j, &p[i * nm + j]);
+    for (int k = 0; k < w->novr; ++k) {
+        const dem_pair_override *o = &w->ovr[k];
+        if (o->a >= nm || o->b >= nm) continue;
+        double e, c;
+        material_derived(w, &o->m, &e, &c);
+        pair_compute(law, &o->m, e, c, &o->m, e, c, 1, &p[o->a * nm + o->b]);
+        p[o->b * nm + o->a] = p[o->a * nm + o->b];
     }
     w->pairs_dirty = 0;
     return DEM_OK;

@@ -50,6 +50,42 @@ int main(void)
         snprintf(name, sizeof name, "restitution hertzMindlin sphere-wall e=%.1f (v=0.1 m/s)", es[k]);
         check_rel(name, impact(DEM_CONTACT_HERTZ_MINDLIN, es[k], 1, 0.1), es[k], 0.01);
     }
+    /* pair override (dem_world_set_pair): particle-wall pair with its own
+       stiffness and restitution, linear law: rebound e and contact time
+       t_c = pi (k/m - gamma^2/4)^(-1/2) of the override, not of the materials */
+    {
+        const double a = 1e-3, rho = 2500, kw = 1200.0, ew = 0.9;
+        const double m = rho * 4.0 / 3.0 * M_PI * a * a * a;
+        const double L = -log(ew), gam = 2.0 * L * sqrt(kw / m) / sqrt(M_PI * M_PI + L * L);
+        const double tc = M_PI / sqrt(kw / m - 0.25 * gam * gam), dt = tc / 2000.0;
+        dem_world *w = test_world(DEM_CONTACT_LINEAR_SPRING_DASHPOT, dt, NULL, 0.02);
+        dem_material pm = test_material(1e7, 0.3, 0.0, 0.0, 0.5), wmat = pm;
+        pm.stiffness_n = 800.0;
+        wmat.stiffness_n = 800.0;
+        int ip, iw;
+        TRY(w, dem_world_add_material(w, &pm, &ip));
+        TRY(w, dem_world_add_material(w, &wmat, &iw));
+        dem_material pair = pm;
+        pair.stiffness_n = kw;
+        pair.restitution = ew;
+        TRY(w, dem_world_set_pair(w, iw, ip, &pair));
+        double p0[3] = {0, 0, 0}, nz[3] = {0, 0, 1};
+        TRY(w, dem_world_add_plane(w, p0, nz, iw, NULL, NULL));
+        dem_particle p = test_particle(0, 0, a + 1e-5, 0, 0, -0.1, a, rho, ip);
+        TRY(w, dem_world_add_particles(w, 1, &p));
+        long in_contact = 0;
+        double fc[3];
+        dem_arrays A;
+        for (long k = 0; k < (long)(4.0 * tc / dt); ++k) {
+            TRY(w, dem_world_step(w, 1));
+            TRY(w, dem_world_particle_contacts(w, NULL, fc));
+            if (fc[0] != 0 || fc[1] != 0 || fc[2] != 0) in_contact++;
+        }
+        TRY(w, dem_world_arrays(w, &A));
+        check_rel("set_pair: particle-wall restitution of the override", A.v[2] / 0.1, ew, 0.01);
+        check_rel("set_pair: particle-wall contact time of the override [s]", in_contact * dt, tc, 0.01);
+        dem_world_destroy(&w);
+    }
     /* round trip of the mapping through dem_world_material_get */
     dem_world *w = test_world(DEM_CONTACT_HERTZ_MINDLIN, 1e-6, NULL, 0.02);
     dem_material m = test_material(1e7, 0.3, 0.3, 0.0, 0.5), got, got2;

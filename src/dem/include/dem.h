@@ -124,6 +124,11 @@ typedef struct {
 } dem_material;
 
 dem_status dem_world_add_material(dem_world *w, const dem_material *m, int *material_id);
+/** Added: override the combined parameters of one material pair (either
+ *  order; e.g. a particle material with a wall material): that pair behaves
+ *  as two bodies of material m (like-material rules: k_n, k_t, friction,
+ *  rolling friction, restitution/damping as given, E* = E/(2(1 - nu^2))). */
+dem_status dem_world_set_pair(dem_world *w, int material_a, int material_b, const dem_material *m);
 /** The material as used, with the derived restitution or damping filled in. */
 dem_status dem_world_material_get(const dem_world *w, int material_id, dem_material *m);
 
