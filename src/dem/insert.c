@@ -346,6 +346,40 @@ dem_status dem_world_add_inlet(dem_world *w, size_t nv, const double *polygon,
     return DEM_OK;
 }
 
+/* 1 if a sphere (x, r) at the current time overlaps no wall (planes: on the
+ * inner side by at least r; triangles: closest point farther than r). */
+static int clear_of_walls(const dem_world *w, const double x[3], double r)
+{
+    for (int k = 0; k < w->nplanes; ++k) {
+        const dem_plane *P = &w->planes[k];
+        double d = 0;
+        for (int c = 0; c < 3; ++c) d += (x[c] - P->x0[c] - P->vel[c] * (w->time - P->t0)) * P->n[c];
+        if (d < r && d > -r) return 0;
+    }
+    for (int k = 0; k < w->nmeshes; ++k) {
+        const dem_mesh *m = &w->meshes[k];
+        double off[3];
+        for (int c = 0; c < 3; ++c) off[c] = m->vel[c] * (w->time - m->t0);
+        for (size_t t = 0; t < m->ntri; ++t) {
+            double P[3][3], lo[3], hi[3];
+            for (int v = 0; v < 3; ++v)
+                for (int c = 0; c < 3; ++c) P[v][c] = m->v0[3 * (size_t)m->tri[3 * t + v] + c] + off[c];
+            int far = 0;
+            for (int c = 0; c < 3; ++c) {
+                lo[c] = fmin(P[0][c], fmin(P[1][c], P[2][c])) - r;
+                hi[c] = fmax(P[0][c], fmax(P[1][c], P[2][c])) + r;
+                far = far || x[c] < lo[c] || x[c] > hi[c];
+            }
+            if (far) continue;
+            double q[3], d2 = 0;
+            dem_closest_on_triangle(x, P[0], P[1], P[2], q);
+            for (int c = 0; c < 3; ++c) d2 += (x[c] - q[c]) * (x[c] - q[c]);
+            if (d2 < r * r) return 0;
+        }
+    }
+    return 1;
+}
+
 static void polygon_point(dem_world *w, const dem_inlet *in, double x[3])
 {
     /* fan from vertex 0; pick a triangle by area, uniform inside it */
@@ -391,7 +425,7 @@ dem_status dem_inlets_run(dem_world *w)
             int ok = 0;
             for (int tr = 0; tr < DEM_INLET_TRIES && !ok; ++tr) {
                 polygon_point(w, in, x);
-                ok = 1;
+                ok = clear_of_walls(w, x, r);
                 for (size_t i = 0; i < w->n && ok; ++i) {
                     const double *y = w->x + 3 * i;
                     double d0 = x[0] - y[0], d1 = x[1] - y[1], d2 = x[2] - y[2], s = r + w->rad[i];

@@ -119,6 +119,9 @@ int main(void)
         TRY(w, dem_world_add_inlet(w, 4, sq2, DEM_RATE_MASS, 1e-3, 0.0, 0.01, &t, &in2));
         double op[3] = {0, 0, 0.02}, on[3] = {0, 0, -1};
         TRY(w, dem_world_add_outlet_plane(w, op, on, &out));
+        /* a duct wall along the edge x = 0.001 of inlet 1 (plane, normal +x) */
+        double wp[3] = {0.001, 0, 0}, wn[3] = {1, 0, 0};
+        TRY(w, dem_world_add_plane(w, wp, wn, mid, NULL, NULL));
         TRY(w, dem_world_step(w, 2000)); /* 0.01 s: nothing reaches the outlet yet */
         dem_arrays A;
         TRY(w, dem_world_arrays(w, &A));
@@ -129,6 +132,10 @@ int main(void)
             mall += A.mass[i];
         }
         size_t ntot = A.n_owned;
+        double wallgap = INFINITY;
+        for (size_t i = 0; i < A.n_owned; ++i)
+            if (A.x[3 * i] > 0) wallgap = fmin(wallgap, A.x[3 * i] - 0.001 - A.radius[i]);
+        check_below("inlet next to a wall: no new particle overlaps the wall (-min gap) [m]", -wallgap, 1e-12);
         check_abs("inlet number rate 5000/s for 0.01 s: inserted", n1, 50.0, 1.0);
         check_abs("inlet mass rate 1 g/s for 0.01 s: inserted mass [kg]", m2, 1e-5, mpmax);
         TRY(w, dem_world_step(w, 4000)); /* all pass z = 0.02 */
