@@ -55,12 +55,16 @@ int main(void)
         double tc;
         TRY(w, dem_world_contact_time(w, 0.0, &tc));
         TRY(w, dem_world_contact_time(w, 1.0, &tc));
-        TRY(w, dem_world_step(w, QUICK ? 20000 : 60000));
+        size_t seen = 0;
         dem_stats st;
-        TRY(w, dem_world_stats(w, &st));
+        for (int chunk = 0; chunk < 20; ++chunk) {
+            TRY(w, dem_world_step(w, QUICK ? 1500 : 3000));
+            TRY(w, dem_world_stats(w, &st));
+            if (st.pair_contacts + st.wall_contacts > seen) seen = st.pair_contacts + st.wall_contacts;
+        }
         char name[128];
-        snprintf(name, sizeof name, "%s with FP traps on: poured and settling, contacts made", dem_contact_law_name(laws[l]));
-        check_below(name, -(double)(st.pair_contacts + st.wall_contacts), 0.0);
+        snprintf(name, sizeof name, "%s with FP traps on: poured and settling, max contacts seen", dem_contact_law_name(laws[l]));
+        check_below(name, -(double)seen, 0.0);
         dem_world_destroy(&w);
     }
 #else
