@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define DEM_STATE_VERSION 1u
+#define DEM_STATE_VERSION 2u /* 2: pair overrides, config.impact_speed, inlet warning flag */
 static const char state_magic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', 'E'};
 
 typedef struct { FILE *f; int bad; } wio;
