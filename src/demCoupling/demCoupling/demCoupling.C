@@ -6,6 +6,7 @@
 #include "cyclicPolyPatch.H"
 #include "mathematicalConstants.H"
 #include "OSspecific.H"
+#include <fstream>
 
 using namespace Foam::constant::mathematical;
 
@@ -589,13 +590,36 @@ void Foam::demCoupling::addOutletsAndInlets()
 
         // polygon: convex hull of the patch points in the patch plane,
         // moved into the domain by 0.6 of the largest diameter so that new
-        // particles start inside the mesh
+        // particles start inside the mesh, and shrunk about its centroid so
+        // that every edge moves inwards by at least 0.55 d_max: new spheres
+        // do not touch the walls that bound the patch
         const labelList hull(convexHull(p2));
+        vector2D cen(Zero);
+        for (const label h : hull) cen += p2[h];
+        cen /= hull.size();
+        scalar rIn = GREAT;
+        forAll(hull, k)
+        {
+            const vector2D a = p2[hull[k]];
+            const vector2D b = p2[hull[(k + 1) % hull.size()]];
+            const vector2D t = (b - a)/max(mag(b - a), VSMALL);
+            const vector2D r = cen - a;
+            rIn = min(rIn, mag(r - (r & t)*t));
+        }
+        const scalar inset = 0.55*dMax;
+        if (rIn <= inset)
+        {
+            FatalIOErrorInFunction(d)
+                << "inlets/" << e.keyword() << ": patch " << patchName
+                << " is too small for particles of diameter " << dMax
+                << " (inradius " << rIn << " m)" << exit(FatalIOError);
+        }
+        const scalar shrink = (rIn - inset)/rIn;
         List<double> poly(3*hull.size());
         forAll(hull, k)
         {
-            const point x =
-                c0 + p2[hull[k]].x()*e1 + p2[hull[k]].y()*e2 - 0.6*dMax*n;
+            const vector2D q = cen + shrink*(p2[hull[k]] - cen);
+            const point x = c0 + q.x()*e1 + q.y()*e2 - 0.6*dMax*n;
             for (direction j = 0; j < 3; ++j) poly[3*k+j] = x[j];
         }
         const vector v(d.getOrDefault<vector>("velocity", Zero));
@@ -844,6 +868,10 @@ void Foam::demCoupling::locateAll()
         Info<< "demCoupling: " << nOut << " particles left through outlets, "
             << nLost << " lost" << endl;
     }
+    if (nOut > 0)
+    {
+        writeRemovedRecords();
+    }
 
     a = world_.arrays();
     host_.setSize(label(a.n_owned));
@@ -851,6 +879,47 @@ void Foam::demCoupling::locateAll()
     {
         host_[i] = hostById_[a.id[i]];
     }
+}
+
+
+void Foam::demCoupling::writeRemovedRecords()
+{
+    const dem_removed_record* rec = nullptr;
+    size_t nRec = 0;
+    world_.check
+    (
+        dem_world_removed_records(world_, &rec, &nRec),
+        "dem_world_removed_records"
+    );
+    if (nRec && Pstream::master())
+    {
+        const fileName dir
+        (
+            mesh_.time().globalPath()/"postProcessing"/"demOutlets"
+           /mesh_.time().timeName(mesh_.time().startTime().value())
+        );
+        mkDir(dir);
+        const fileName file(dir/"removed.dat");
+        const bool fresh = !isFile(file);
+        std::ofstream os(file.c_str(), std::ios::app);
+        if (fresh)
+        {
+            os << "# time id d rho outletPatch\n";
+        }
+        os.precision(10);
+        for (size_t k = 0; k < nRec; ++k)
+        {
+            const label o = outletIds_.find(rec[k].outlet);
+            const word patch =
+                o >= 0
+              ? mesh_.boundaryMesh()[outletPatches_[o]].name()
+              : word("none");
+            os  << mesh_.time().value() << ' ' << rec[k].id << ' '
+                << rec[k].diameter << ' ' << rec[k].density << ' '
+                << patch << '\n';
+        }
+    }
+    dem_world_clear_removed_records(world_);
 }
 
 
