@@ -20,7 +20,7 @@ int main(void)
     const double d = 2e-3, a = 0.5 * d, rho = 2500;
     const size_t n = QUICK ? 600 : 2000;
     const double L = QUICK ? 8 * d : 12 * d;
-    const double dt = 1e-5;
+    const double dt = 1.5e-5; /* < 0.2 x Rayleigh time 8.7e-5 s */
     dem_world *w = NULL;
     TRY(w, dem_world_create(&w));
     dem_config c;

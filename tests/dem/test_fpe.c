@@ -49,7 +49,7 @@ int main(void)
         tp.material = glass;
         double lo[3] = {0, 0, 0}, hi[3] = {0.03, 0.03, 0.09};
         size_t got;
-        TRY(w, dem_world_fill_box(w, lo, hi, NULL, NULL, QUICK ? 300 : 800, &tp, &got));
+        TRY(w, dem_world_fill_box(w, lo, hi, NULL, NULL, QUICK ? 300 : 500, &tp, &got));
         dem_arrays A;
         TRY(w, dem_world_arrays(w, &A)); /* coupling arrays on */
         double tc;
@@ -58,7 +58,7 @@ int main(void)
         size_t seen = 0;
         dem_stats st;
         for (int chunk = 0; chunk < 20; ++chunk) {
-            TRY(w, dem_world_step(w, QUICK ? 1500 : 3000));
+            TRY(w, dem_world_step(w, 1500));
             TRY(w, dem_world_stats(w, &st));
             if (st.pair_contacts + st.wall_contacts > seen) seen = st.pair_contacts + st.wall_contacts;
         }
