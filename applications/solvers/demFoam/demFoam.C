@@ -92,6 +92,8 @@ int main(int argc, char *argv[])
             }
         }
 
+        dem.updateDriving(U);
+
         if (runTime.writeTime())
         {
             dem.write();

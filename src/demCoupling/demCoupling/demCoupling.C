@@ -118,6 +118,10 @@ Foam::demCoupling::demCoupling
     demDt_(0),
     dragUpdateInterval_(0),
     nSubCycles_(0),
+    driving_(dict_.found("periodicDriving")),
+    UsTarget_(Zero),
+    drivingRelax_(0.2),
+    G_(Zero),
     lostUnknown_(0),
     bedEta_(0),
     balanceFluid_(0),
@@ -178,6 +182,14 @@ Foam::demCoupling::demCoupling
         FatalIOErrorInFunction(dict_)
             << "epsMin " << epsMin_ << " in " << dict_.name()
             << ": allowed 0 < epsMin < 1" << exit(FatalIOError);
+    }
+
+    if (driving_)
+    {
+        const dictionary& dd = dict_.subDict("periodicDriving");
+        UsTarget_ = dd.get<vector>("superficialVelocity");
+        drivingRelax_ = dd.getOrDefault<scalar>("relaxation", 0.2);
+        G_ = dd.getOrDefault<vector>("initialGradient", Zero);
     }
 
     const dictionary& demDict = dict_.subDict("dem");
@@ -1055,7 +1067,7 @@ void Foam::demCoupling::evolve
     {
         const scalar Vp = 4.0/3.0*pi*pow3(a.radius[s]);
         uF[s] = interp(s, Uc);
-        const vector gp = rhof_*interp(s, gradPc);
+        const vector gp = rhof_*interp(s, gradPc) + G_;
         const vector dtau = rhof_*interp(s, divTc);
         epsP[s] = interp(s, epsc);
         muP[s] = rhof_*interp(s, nuc);
@@ -1203,7 +1215,7 @@ void Foam::demCoupling::evolve
         vector S = -F_[c];
         if (pEps)
         {
-            S += (1 - epsRaw_[c])*rhof_*gradPc[c];
+            S += (1 - epsRaw_[c])*(rhof_*gradPc[c] + G_);
         }
         if (tauEps)
         {
@@ -1266,4 +1278,29 @@ Foam::tmp<Foam::volVectorField> Foam::demCoupling::Skin() const
        /rhof_;
     tS.ref().correctBoundaryConditions();
     return tS;
+}
+
+
+void Foam::demCoupling::updateDriving(const volVectorField& U)
+{
+    if (!driving_) return;
+
+    // volume mean of the superficial velocity eps U
+    const scalarField& V = mesh_.V();
+    const vector Us =
+        gSum(eps_.primitiveField()*U.primitiveField()*V)/gSum(V);
+    const scalar dt = mesh_.time().deltaTValue();
+
+    // the driving force -G per volume moves by relaxation x the force that
+    // would close the gap in one step; only along the target's components
+    vector dG = -drivingRelax_*rhof_*(UsTarget_ - Us)/dt;
+    for (direction k = 0; k < 3; ++k)
+    {
+        if (mag(UsTarget_[k]) < VSMALL) dG[k] = 0;
+    }
+    G_ += dG;
+
+    Info<< "demCoupling: periodic driving: superficial velocity " << Us
+        << " target " << UsTarget_ << ", mean pressure gradient G " << G_
+        << " Pa/m" << endl;
 }
