@@ -30,9 +30,11 @@ static inline void rotate_history(double *h, const double n[3])
         double h2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
         h[0] -= hn * n[0]; h[1] -= hn * n[1]; h[2] -= hn * n[2];
         double h2n = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-        /* rescale to the old length; skipped when the factor
-           sqrt(1 + hn^2/h2n) rounds to 1 anyway */
-        if (h2n > 0.0 && hn * hn > 1e-17 * h2n) {
+        /* rescale to the old length; skipped when the projection shortened
+           it by less than 5e-13 relative (quasi-static contacts: the normal
+           turns by ~1e-7 per step; the loss then stays below ~1e-6 over 1e6
+           steps of one contact) */
+        if (h2n > 0.0 && hn * hn > 1e-12 * h2n) {
             double s = sqrt(h2 / (h2n + (h2n > 0.0 ? 0.0 : 1.0)));
             h[0] *= s; h[1] *= s; h[2] *= s;
         }
@@ -261,7 +263,7 @@ typedef struct {
     double *delta, *sq, *dn, *fcn, *meff, *idt;
     double *vn, *vt0, *vt1, *vt2, *hm2, *kt, *ct8, *cn8;
     double *g, *sc, *q4;
-    double *wm2, *crol, *mur, *Ij, *ai, *mi, *Ii;
+    double *wm2, *crol, *mur, *Ij, *ai, *mi, *Ii, *wr0, *wr1, *wr2;
     const dem_pair **q;
     int *i;
 } hm_soa;
@@ -273,7 +275,7 @@ static void soa_map(hm_soa *b, void *mem, size_t cap)
                     &b->delta, &b->sq, &b->dn, &b->fcn, &b->meff, &b->idt,
                     &b->vn, &b->vt0, &b->vt1, &b->vt2, &b->hm2, &b->kt, &b->ct8, &b->cn8,
                     &b->g, &b->sc, &b->q4, &b->wm2, &b->crol, &b->mur, &b->Ij,
-                    &b->ai, &b->mi, &b->Ii};
+                    &b->ai, &b->mi, &b->Ii, &b->wr0, &b->wr1, &b->wr2};
     size_t nf = sizeof f / sizeof f[0];
     for (size_t a = 0; a < nf; ++a) { *f[a] = p; p += cap; }
     b->q = (const dem_pair **)p; p += cap;
@@ -281,9 +283,16 @@ static void soa_map(hm_soa *b, void *mem, size_t cap)
     b->k = b->j + cap;
     b->i = b->k + cap;
 }
-_Static_assert(33 * sizeof(double) + 3 * sizeof(int) <= DEM_SCRATCH_ENTRY, "scratch entry too small for the SoA buffers");
+_Static_assert(36 * sizeof(double) + 3 * sizeof(int) <= DEM_SCRATCH_ENTRY, "scratch entry too small for the SoA buffers");
 
-static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov, size_t *ncont)
+#if defined(__GNUC__)
+#define DEM_ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define DEM_ALWAYS_INLINE inline
+#endif
+/* always inlined: each call site is specialised for periodic/uniform */
+static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, const int uniform, double *maxov,
+                                           size_t *ncont)
 {
     const double dt = w->hdt;
     const int nm = w->nmat;
@@ -295,6 +304,10 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
     const unsigned char *nbs = w->nb_s;
     double *nbh = w->nb_h;
     const double dtl = w->cfg.dt;  /* step of the rolling-torque limiter */
+    /* uniform (one material): the pair constants are loop invariants instead of per-contact copies */
+    const dem_pair *q0 = pt;
+    const double u_cn8 = q0->cn8, u_ct8 = q0->mu > 0.0 ? q0->ct8 : 0.0, u_k43 = q0->k43,
+                 u_k43m = q0->k43_mind, u_imm = q0->imumind, u_mm = q0->mumind, u_mur = q0->mu_r;
     hm_soa B;
     soa_map(&B, w->scratch, w->capscratch);
     double *restrict Bd0 = B.d0, *restrict Bd1 = B.d1, *restrict Bd2 = B.d2, *restrict Br2 = B.r2,
@@ -304,7 +317,8 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
            *restrict Bvt1 = B.vt1, *restrict Bvt2 = B.vt2, *restrict Bhm2 = B.hm2, *restrict Bkt = B.kt,
            *restrict Bct8 = B.ct8, *restrict Bcn8 = B.cn8, *restrict Bg = B.g, *restrict Bsc = B.sc,
            *restrict Bq4 = B.q4, *restrict Bwm2 = B.wm2, *restrict Bcrol = B.crol, *restrict Bmur = B.mur,
-           *restrict BIj = B.Ij, *restrict Bai = B.ai, *restrict Bmi = B.mi, *restrict BIi = B.Ii;
+           *restrict BIj = B.Ij, *restrict Bai = B.ai, *restrict Bmi = B.mi, *restrict BIi = B.Ii,
+           *restrict Bwr0 = B.wr0, *restrict Bwr1 = B.wr1, *restrict Bwr2 = B.wr2;
     int *restrict Bj = B.j, *restrict Bk = B.k, *restrict Bi = B.i;
     double movr = *maxov;
     size_t nct = 0;
@@ -338,9 +352,11 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
                 Bd0[nc] = d0; Bd1[nc] = d1; Bd2[nc] = d2; Br2[nc] = r2; Bs[nc] = s;
                 Bmj[nc] = mj; Bmsum[nc] = mi + mj; Baj[nc] = aj; BIj[nc] = 0.4 * mj * aj * aj;
                 Bai[nc] = ai; Bmi[nc] = mi; BIi[nc] = Ii;
-                Bcn8[nc] = q->cn8; Bct8[nc] = q->mu > 0.0 ? q->ct8 : 0.0;
-                Bkt[nc] = q->k43; Bsc[nc] = q->k43_mind; Bidt[nc] = q->imumind; Bg[nc] = q->mumind;
-                Bmur[nc] = q->mu_r;
+                if (!uniform) {
+                    Bcn8[nc] = q->cn8; Bct8[nc] = q->mu > 0.0 ? q->ct8 : 0.0;
+                    Bkt[nc] = q->k43; Bsc[nc] = q->k43_mind; Bidt[nc] = q->imumind; Bg[nc] = q->mumind;
+                    Bmur[nc] = q->mu_r;
+                }
                 Bi[nc] = (int)i; Bj[nc] = j; Bk[nc] = k;
                 nc += touch;
             }
@@ -361,14 +377,14 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
             const double meff = Bmi[a] * Bmj[a] * (inv * r * s * ds);
             const double rstar = Bai[a] * Baj[a] * (inv * r * msum * ds);
             const double sq = sqrt(rstar * delta);
-            const double k43 = Bkt[a];
+            const double k43 = uniform ? u_k43 : Bkt[a];
             Bdelta[a] = delta;
             Bsq[a] = sq;
             Bfcn[a] = k43 * sq * delta;
             Bdn[a] = sqrt(meff * sq);
-            Bmeff[a] = Bg[a] * delta;                    /* delta_t,max = mu mindlin delta */
-            Bidt[a] = Bidt[a] * (inv * r * s * msum);    /* 1/delta_t,max (mu = 0: 0) */
-            Bkt[a] = Bsc[a] * sq;                        /* mu f_cn / delta_t,max */
+            Bmeff[a] = (uniform ? u_mm : Bg[a]) * delta;                 /* delta_t,max = mu mindlin delta */
+            Bidt[a] = (uniform ? u_imm : Bidt[a]) * (inv * r * s * msum); /* 1/delta_t,max (mu = 0: 0) */
+            Bkt[a] = (uniform ? u_k43m : Bsc[a]) * sq;                    /* mu f_cn / delta_t,max */
         }
         for (int a = 0; a < nc; ++a) {
             const double ov = Bdelta[a];
@@ -399,6 +415,7 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
             }
             const double wr0 = wi[0] - wj[0], wr1 = wi[1] - wj[1], wr2 = wi[2] - wj[2];
             Bwm2[a] = wr0 * wr0 + wr1 * wr1 + wr2 * wr2;
+            Bwr0[a] = wr0; Bwr1[a] = wr1; Bwr2[a] = wr2;
         }
         /* phase 4 (vector): tangential law factors, rolling factor */
         DEM_IVDEP
@@ -421,7 +438,7 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
             const double wmsafe = wm + (wm > 0.0 ? 0.0 : 1.0);
             const double Ii = BIi[a], Ij = BIj[a], den = dtl * (Ii + Ij);
             const double inv2 = 1.0 / (wmsafe * den);
-            const double c1 = Bmur[a] * Bfcn[a] * den * inv2, c2 = Ii * Ij * wmsafe * inv2;
+            const double c1 = (uniform ? u_mur : Bmur[a]) * Bfcn[a] * den * inv2, c2 = Ii * Ij * wmsafe * inv2;
             Bcrol[a] = wm > 0.0 ? -(c1 < c2 ? c1 : c2) : 0.0;
         }
         /* phase 5 (scatter): forces and torques */
@@ -432,18 +449,17 @@ static inline void pair_loop_hm(dem_world *w, const int periodic, double *maxov,
             double *h = nbh + 3 * (size_t)Bk[a];
             const double sc = Bsc[a];
             if (sc < 1.0) { h[0] *= sc; h[1] *= sc; h[2] *= sc; }
-            const double ce = -Bkt[a] * Bg[a], cd = -Bct8[a] * Bdn[a] * Bq4[a];
+            const double ce = -Bkt[a] * Bg[a], cd = -(uniform ? u_ct8 : Bct8[a]) * Bdn[a] * Bq4[a];
             const double ft0 = ce * h[0] + cd * Bvt0[a];
             const double ft1 = ce * h[1] + cd * Bvt1[a];
             const double ft2 = ce * h[2] + cd * Bvt2[a];
-            const double fn = Bfcn[a] - Bcn8[a] * Bdn[a] * Bvn[a];
+            const double fn = Bfcn[a] - (uniform ? u_cn8 : Bcn8[a]) * Bdn[a] * Bvn[a];
             const double F0 = fn * n0 + ft0, F1 = fn * n1 + ft1, F2 = fn * n2 + ft2;
             f[3 * ii] += F0; f[3 * ii + 1] += F1; f[3 * ii + 2] += F2;
             f[3 * j] -= F0; f[3 * j + 1] -= F1; f[3 * j + 2] -= F2;
             const double c0 = n1 * ft2 - n2 * ft1, c1 = n2 * ft0 - n0 * ft2, c2 = n0 * ft1 - n1 * ft0;
             const double cr = Bcrol[a];
-            const double *wj = om + 3 * j, *wi = om + 3 * ii;
-            const double M0 = cr * (wi[0] - wj[0]), M1 = cr * (wi[1] - wj[1]), M2 = cr * (wi[2] - wj[2]);
+            const double M0 = cr * Bwr0[a], M1 = cr * Bwr1[a], M2 = cr * Bwr2[a];
             t[3 * ii] += M0 - ai * c0; t[3 * ii + 1] += M1 - ai * c1; t[3 * ii + 2] += M2 - ai * c2;
             t[3 * j] -= aj * c0 + M0; t[3 * j + 1] -= aj * c1 + M1; t[3 * j + 2] -= aj * c2 + M2;
         }
@@ -608,7 +624,11 @@ void dem_forces(dem_world *w, double hist_dt)
     int per = w->cfg.periodic[0] || w->cfg.periodic[1] || w->cfg.periodic[2];
     switch (w->cfg.contact_law) {
     case DEM_CONTACT_HERTZ_MINDLIN:
-        if (per) pair_loop_hm(w, 1, &movr, &nct); else pair_loop_hm(w, 0, &movr, &nct);
+        if (w->nmat == 1) {
+            if (per) pair_loop_hm(w, 1, 1, &movr, &nct); else pair_loop_hm(w, 0, 1, &movr, &nct);
+        } else {
+            if (per) pair_loop_hm(w, 1, 0, &movr, &nct); else pair_loop_hm(w, 0, 0, &movr, &nct);
+        }
         break;
     case DEM_CONTACT_LINEAR_SPRING_DASHPOT:
         if (per) pair_loop(w, LAW_LSD, 1, &movr, &nct); else pair_loop(w, LAW_LSD, 0, &movr, &nct);

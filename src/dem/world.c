@@ -342,6 +342,7 @@ dem_status dem_pairs_update(dem_world *w)
     dem_pair *p = realloc(w->pair, (size_t)(nm > 0 ? nm * nm : 1) * sizeof *p);
     if (!p) return DEM_FAIL(w, DEM_ERR_NOMEM, "pair table %d x %d", nm, nm);
     w->pair = p;
+    if (nm == 0) memset(p, 0, sizeof *p); /* the kernels read entry 0 */
     int law = w->cfg.contact_law;
     for (int i = 0; i < nm; ++i) {
         const dem_material *a = &w->mat[i];
