@@ -322,15 +322,13 @@ void Foam::demCoupling::configureWorld()
     c.max_overlap_ratio =
         d.getOrDefault<scalar>("maxOverlapRatio", c.max_overlap_ratio);
     c.seed = uint64_t(d.getOrDefault<label>("seed", 1));
+    c.impact_speed = d.getOrDefault<scalar>("impactSpeed", c.impact_speed);
 
     world_.check(dem_world_configure(world_, &c), "dem_world_configure");
 
     // materials (in the order given)
-    const dictionary& mats = dict_.subDict("materials");
-    for (const entry& e : mats)
+    auto readMaterial = [](const dictionary& md, const word& name)
     {
-        if (!e.isDict()) continue;
-        const dictionary& md = e.dict();
         dem_material m;
         m.youngs_modulus = md.getOrDefault<scalar>("youngsModulus", 0);
         m.poisson_ratio = md.getOrDefault<scalar>("poissonRatio", 0.3);
@@ -343,13 +341,50 @@ void Foam::demCoupling::configureWorld()
         if (m.restitution < 0 && m.damping < 0)
         {
             FatalIOErrorInFunction(md)
-                << "material " << e.keyword() << " in " << md.name()
+                << name << " in " << md.name()
                 << ": give restitution (0 < e <= 1) or damping (>= 0)"
                 << exit(FatalIOError);
         }
+        return m;
+    };
+
+    const dictionary& mats = dict_.subDict("materials");
+    for (const entry& e : mats)
+    {
+        if (!e.isDict()) continue;
+        const dem_material m = readMaterial(e.dict(), "material " + e.keyword());
         int id;
         world_.check(dem_world_add_material(world_, &m, &id), "dem_world_add_material");
         materialIds_.insert(e.keyword(), id);
+    }
+
+    // per-pair overrides, e.g. a particle-wall stiffness ([S] Table 1)
+    if (dict_.found("materialPairs"))
+    {
+        const dictionary& pairs = dict_.subDict("materialPairs");
+        for (const entry& e : pairs)
+        {
+            if (!e.isDict()) continue;
+            const dictionary& pd = e.dict();
+            const wordList names(pd.get<wordList>("materials"));
+            if (names.size() != 2)
+            {
+                FatalIOErrorInFunction(pd)
+                    << "materialPairs/" << e.keyword() << "/materials in "
+                    << pd.name() << ": give two material names"
+                    << exit(FatalIOError);
+            }
+            const dem_material m =
+                readMaterial(pd, "materialPairs/" + e.keyword());
+            world_.check
+            (
+                dem_world_set_pair
+                (
+                    world_, materialId(names[0], pd), materialId(names[1], pd), &m
+                ),
+                "dem_world_set_pair"
+            );
+        }
     }
     if (materialIds_.empty())
     {
