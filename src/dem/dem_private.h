@@ -127,6 +127,7 @@ struct dem_world {
     /* coupling arrays, allocated on first dem_world_arrays() call */
     int have_ext;
     double *fext, *text, *K, *uf, *J;
+    double *Ma;              /* added (virtual) mass [kg], see dem.h added_mass */
     int64_t next_id;
 
     /* neighbour grid */

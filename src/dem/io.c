@@ -18,7 +18,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define DEM_STATE_VERSION 2u /* 2: pair overrides, config.impact_speed, inlet warning flag */
+#define DEM_STATE_VERSION 3u /* 2: pair overrides, config.impact_speed, inlet warning flag;
+                                3: added_mass (version 2 files are read with added_mass 0) */
 static const char state_magic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', 'E'};
 
 typedef struct { FILE *f; int bad; } wio;
@@ -60,6 +61,7 @@ static void save_world(wio *o, const dem_world *w)
         put(o, w->fext, 3 * np * sizeof(double)); put(o, w->text, 3 * np * sizeof(double));
         put(o, w->K, np * sizeof(double)); put(o, w->uf, 3 * np * sizeof(double));
         put(o, w->J, 3 * np * sizeof(double));
+        put(o, w->Ma, np * sizeof(double));
     }
     /* neighbour list */
     uint64_t nrows = w->nb_off ? w->nrows : 0, nnb = w->nnb, nwc = w->nwc;
@@ -136,7 +138,7 @@ static dem_status load_world(wio *o, dem_world *w, const char *path, dem_world *
     GET(o, ver); GET(o, endian); GET(o, sd);
     if (o->bad || memcmp(magic, state_magic, sizeof magic) != 0)
         return DEM_FAIL(err, DEM_ERR_FORMAT, "restore: '%s' is not a demFoam DEM state file", path);
-    if (ver != DEM_STATE_VERSION || endian != 0x01020304u || sd != sizeof(double))
+    if ((ver != DEM_STATE_VERSION && ver != 2u) || endian != 0x01020304u || sd != sizeof(double))
         return DEM_FAIL(err, DEM_ERR_FORMAT, "restore: '%s' has version %u (byte-order mark 0x%08x, "
                         "double %u bytes); this library reads version %u, native byte order",
                         path, ver, endian, sd, DEM_STATE_VERSION);
@@ -171,6 +173,7 @@ static dem_status load_world(wio *o, dem_world *w, const char *path, dem_world *
         get(o, w->fext, 3 * np * sizeof(double)); get(o, w->text, 3 * np * sizeof(double));
         get(o, w->K, np * sizeof(double)); get(o, w->uf, 3 * np * sizeof(double));
         get(o, w->J, 3 * np * sizeof(double));
+        if (ver >= 3u) get(o, w->Ma, np * sizeof(double));
     }
     uint64_t nrows = 0, nnb = 0, nwc = 0;
     GET(o, w->list_valid); GET(o, nrows); GET(o, nnb); GET(o, nwc);
@@ -309,16 +312,16 @@ dem_status dem_world_restore(dem_world *w, const char *path)
 /*--- pack / unpack ------------------------------------------------------------------*/
 /* Layout: uint32 magic | uint32 npair | uint32 nwall | uint32 flags |
  *         int64 id | double x,v,w,f,t (15) | radius, mass, density |
- *         int material | int pad | double fext,text (6), K, u (3), J (3) |
+ *         int material | int pad | double fext,text (6), K, u (3), J (3), added mass |
  *         npair x (int64 partner id, double h[3])  (h oriented as seen from this particle)
  *         nwall x (int wall, int tri, double h[3])                                      */
-#define PACK_MAGIC 0x444d5031u /* "DMP1" */
+#define PACK_MAGIC 0x444d5032u /* "DMP2" (2: added mass) */
 typedef struct {
     uint32_t magic, npair, nwall, flags;
     int64_t id;
     double xvwft[15], rad, mass, rho;
     int32_t mat, pad;
-    double ext[13];
+    double ext[14];
 } pack_head;
 typedef struct { int64_t partner; double h[3]; } pack_pair;
 typedef struct { int32_t wall, tri; double h[3]; } pack_wall;
@@ -417,6 +420,7 @@ dem_status dem_world_pack_particle(const dem_world *w, size_t index, void *buf, 
             hd.ext[7 + c] = w->uf[3 * index + c]; hd.ext[10 + c] = w->J[3 * index + c];
         }
         hd.ext[6] = w->K[index];
+        hd.ext[13] = w->Ma[index];
     }
     memcpy(buf, &hd, sizeof hd);
     return DEM_OK;
@@ -471,6 +475,7 @@ dem_status dem_world_unpack_particle(dem_world *w, const void *buf, size_t size,
             w->uf[3 * i + c] = hd.ext[7 + c]; w->J[3 * i + c] = hd.ext[10 + c];
         }
         w->K[i] = hd.ext[6];
+        w->Ma[i] = hd.ext[13];
     }
     const char *p = (const char *)buf + sizeof hd;
     for (uint32_t k = 0; k < hd.npair; ++k) {

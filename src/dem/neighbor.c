@@ -361,7 +361,7 @@ dem_status dem_list_build(dem_world *w)
             permute_f3(w, w->x0, n);
             if (w->have_ext) {
                 permute_d(w, w->fext, 3, n); permute_d(w, w->text, 3, n); permute_d(w, w->uf, 3, n);
-                permute_d(w, w->J, 3, n); permute_d(w, w->K, 1, n);
+                permute_d(w, w->J, 3, n); permute_d(w, w->K, 1, n); permute_d(w, w->Ma, 1, n);
             }
             w->reorders++;
         }

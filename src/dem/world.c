@@ -115,7 +115,7 @@ void dem_world_destroy(dem_world **pw)
     free(w->id); free(w->x); free(w->v); free(w->w); free(w->f); free(w->t);
     free(w->rad); free(w->mass); free(w->rho); free(w->mat_of); free(w->x0);
     free(w->list_index);
-    free(w->fext); free(w->text); free(w->K); free(w->uf); free(w->J);
+    free(w->fext); free(w->text); free(w->K); free(w->uf); free(w->J); free(w->Ma);
     free(w->cell_start); free(w->cell_item); free(w->cell_of); free(w->perm);
     free(w->old2new); free(w->tmp);
     free(w->nb_off); free(w->nb_j); free(w->nb_s); free(w->nb_h);
@@ -390,7 +390,7 @@ static dem_status reserve_raw(dem_world *w, size_t cap)
     GROW(w->rho, cap); GROW(w->mat_of, cap); GROW(w->x0, 3 * cap); GROW(w->list_index, cap);
     if (w->have_ext) {
         GROW(w->fext, 3 * cap); GROW(w->text, 3 * cap); GROW(w->K, cap);
-        GROW(w->uf, 3 * cap); GROW(w->J, 3 * cap);
+        GROW(w->uf, 3 * cap); GROW(w->J, 3 * cap); GROW(w->Ma, cap);
     }
     w->cap = cap;
     return DEM_OK;
@@ -417,9 +417,10 @@ dem_status dem_ext_alloc(dem_world *w)
     w->K = calloc(cap, sizeof(double));
     w->uf = calloc(3 * cap, sizeof(double));
     w->J = calloc(3 * cap, sizeof(double));
-    if (!w->fext || !w->text || !w->K || !w->uf || !w->J) {
-        free(w->fext); free(w->text); free(w->K); free(w->uf); free(w->J);
-        w->fext = w->text = w->K = w->uf = w->J = NULL;
+    w->Ma = calloc(cap, sizeof(double));
+    if (!w->fext || !w->text || !w->K || !w->uf || !w->J || !w->Ma) {
+        free(w->fext); free(w->text); free(w->K); free(w->uf); free(w->J); free(w->Ma);
+        w->fext = w->text = w->K = w->uf = w->J = w->Ma = NULL;
         return DEM_FAIL(w, DEM_ERR_NOMEM, "coupling arrays for %zu particles", cap);
     }
     w->have_ext = 1;
@@ -445,6 +446,7 @@ static void move_particle(dem_world *w, size_t dst, size_t src)
         memcpy(w->uf + 3 * dst, w->uf + 3 * src, 3 * sizeof(double));
         memcpy(w->J + 3 * dst, w->J + 3 * src, 3 * sizeof(double));
         w->K[dst] = w->K[src];
+        w->Ma[dst] = w->Ma[src];
     }
 }
 
@@ -483,6 +485,7 @@ dem_status dem_append_particle(dem_world *w, const dem_particle *p)
         for (int k = 0; k < 3; ++k)
             w->fext[3 * i + k] = w->text[3 * i + k] = w->uf[3 * i + k] = w->J[3 * i + k] = 0.0;
         w->K[i] = 0.0;
+        w->Ma[i] = 0.0;
     }
     w->n++;
     w->list_valid = 0;
@@ -572,6 +575,7 @@ dem_status dem_world_arrays(dem_world *w, dem_arrays *a)
     a->material = w->mat_of;
     a->force_ext = w->fext; a->torque_ext = w->text;
     a->drag_coeff = w->K; a->fluid_velocity = w->uf; a->drag_impulse = w->J;
+    a->added_mass = w->Ma;
     return DEM_OK;
 }
 
@@ -718,7 +722,7 @@ dem_status dem_world_memory(const dem_world *w, size_t *particle_bytes, size_t *
     /* id, x, v, w, f, t, radius, mass, density, material, x0 (float), list_index */
     size_t per = sizeof(int64_t) + 15 * sizeof(double) + 3 * sizeof(double) + sizeof(int) +
                  3 * sizeof(float) + sizeof(int);
-    if (w->have_ext) per += 13 * sizeof(double);
+    if (w->have_ext) per += 14 * sizeof(double);
     if (particle_bytes) *particle_bytes = w->cap * per;
     if (list_bytes)
         *list_bytes = w->capnb * (sizeof(int) + 1 + 3 * sizeof(double)) + w->caprows * sizeof(int) +

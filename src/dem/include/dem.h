@@ -157,6 +157,9 @@ typedef struct {
     double *fluid_velocity;         /* u_fluid,i, 3 per particle */
     double *drag_impulse;           /* 3 per particle: sum over steps of K_i (u_fluid,i - v_i) dt
                                        with the implicit end-of-step velocity; reset by the caller */
+    double *added_mass;             /* added: m_a,i [kg] >= 0 (default 0), e.g. virtual mass
+                                       C_vm rho_f V_p: translational inertia m + m_a, gravity m g
+                                       (the particle feels -m_a dv/dt, implicitly); kept until changed */
 } dem_arrays;
 
 /** Direct access to the particle arrays (see validity rule at the top). */
