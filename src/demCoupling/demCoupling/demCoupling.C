@@ -111,6 +111,9 @@ Foam::demCoupling::demCoupling
     formulation_(couplingFormulation::New(dict_)),
     drag_(dragModel::New(dict_)),
     voidage_(voidageModel::New(dict_, mesh, locator_)),
+    extraForces_(extraForce::NewList(dict_)),
+    Uprev_(),
+    tUprev_(-GREAT),
     cellMeanDrag_(false),
     frozen_(dict_.getOrDefault<bool>("frozen", false)),
     epsMin_(dict_.getOrDefault<scalar>("epsMin", 0.1)),
@@ -783,6 +786,7 @@ void Foam::demCoupling::addInitialParticles()
             const List<point> pos(d.get<List<point>>("positions"));
             const scalar dia = d.get<scalar>("diameter");
             const scalar rho = d.get<scalar>("density");
+            const vector w(d.getOrDefault<vector>("angularVelocity", Zero));
             List<dem_particle> ps(pos.size());
             forAll(pos, i)
             {
@@ -792,7 +796,7 @@ void Foam::demCoupling::addInitialParticles()
                 {
                     p.x[k] = pos[i][k];
                     p.v[k] = v[k];
-                    p.omega[k] = 0;
+                    p.omega[k] = w[k];
                 }
                 p.radius = 0.5*dia;
                 p.density = rho;
@@ -1063,6 +1067,16 @@ void Foam::demCoupling::evolve
     const scalarField& V = mesh_.V();
     const couplingFormulation& form = formulation_();
 
+    // optional forces f'' (extraForces/): fluid vorticity and acceleration
+    // at the particles, the explicit impulse and the added mass per force
+    const label nExtra = extraForces_.size();
+    vectorField vortCell, DuDtCell;
+    extraForceFields(U, vortCell, DuDtCell);
+    List<vector> vortP(nExtra ? n : 0), DuDtP(nExtra ? n : 0);
+    List<vector> vStart(nExtra ? n : 0);
+    List<scalarField> maK(nExtra, scalarField(n, 0));
+    List<List<vector>> impK(nExtra, List<vector>(n, Zero));
+
     List<vector> uF(n), fGP(n), fExch(n), fPart(n), divTauP(n);
     scalarField epsP(n), muP(n), dragFac(n), Ksum(n, 0);
 
@@ -1113,6 +1127,20 @@ void Foam::demCoupling::evolve
         setVec(a.force_ext, s, fPart[s]);
         setVec(a.torque_ext, s, vector::zero);
         setVec(a.drag_impulse, s, vector::zero);
+        scalar ma = 0;
+        if (nExtra)
+        {
+            vortP[s] = interp(s, vortCell);
+            DuDtP[s] = interp(s, DuDtCell);
+            vStart[s] = toVec(a.v, s);
+            forAll(extraForces_, k)
+            {
+                maK[k][s] = dragFac[s]
+                   *extraForces_[k].addedMass(2*a.radius[s], rhof_, epsP[s]);
+                ma += maK[k][s];
+            }
+        }
+        a.added_mass[s] = ma;
     }
 
     // 3: DEM sub-steps with drag re-evaluated every chunk
@@ -1150,6 +1178,29 @@ void Foam::demCoupling::evolve
             a.drag_coeff[j] = K;
             setVec(a.fluid_velocity, j, uf);
             Ksum[s] += K*m/nDem;
+            if (nExtra)
+            {
+                // explicit extra forces (times the set's factor), held
+                // over this drag update
+                extraForce::particleState st;
+                st.d = 2*a.radius[j];
+                st.v = v;
+                st.omega = toVec(a.omega, j);
+                st.u = uF[s];
+                st.vorticity = vortP[s];
+                st.DuDt = DuDtP[s];
+                st.rhof = rhof_;
+                st.muf = muP[s];
+                st.eps = epsP[s];
+                vector fx(Zero);
+                forAll(extraForces_, k)
+                {
+                    const vector f = dragFac[s]*extraForces_[k].force(st);
+                    impK[k][s] += f*(m*demDt_);
+                    fx += f;
+                }
+                setVec(a.force_ext, j, fPart[s] + fx);
+            }
             if (frozen_)
             {
                 // fixed bed: no DEM motion; the exchange is the drag at v
@@ -1183,6 +1234,11 @@ void Foam::demCoupling::evolve
     fDrag_.setSize(nEnd);
     fGradP_.setSize(nEnd);
     etaP_.setSize(nEnd);
+    fExtra_.setSize(nExtra);
+    forAll(fExtra_, k)
+    {
+        fExtra_[k].setSize(nEnd);
+    }
     label nSeen = 0;
 
     for (label j = 0; j < nEnd; ++j)
@@ -1192,21 +1248,31 @@ void Foam::demCoupling::evolve
         if (s < 0)
         {
             fDrag_[j] = Zero; fGradP_[j] = Zero; etaP_[j] = 0;
+            forAll(fExtra_, k) fExtra_[k][j] = Zero;
             continue;
         }
         ++nSeen;
         const scalar Vp = 4.0/3.0*pi*pow3(a.radius[j]);
         const vector dragRate = toVec(a.drag_impulse, j)/dt;
-        const vector fpf = dragRate + fPart[s];
+        // extra forces: explicit impulse plus the implicit added-mass part
+        // -m_a (v_end - v_start) (exactly what the core applied)
+        vector extraRate(Zero);
+        forAll(extraForces_, k)
+        {
+            fExtra_[k][j] =
+                (impK[k][s] - maK[k][s]*(toVec(a.v, j) - vStart[s]))/dt;
+            extraRate += fExtra_[k][j];
+        }
+        const vector fpf = dragRate + fPart[s] + extraRate;
         sumParticle += fpf;
         sumDrag += dragRate;
         sumGradP += fGP[s];
         sumTau += divTauP[s];
         sumMagParticle += mag(fpf);
-        const vector exch = dragRate + fExch[s];
+        const vector exch = dragRate + fExch[s] + extraRate;
 
-        // [Z]'s f_d of this particle (the drag before the set's factor)
-        const vector fd = dragRate/dragFac[s];
+        // [Z]'s f_d + f'' of this particle (before the set's factor)
+        const vector fd = (dragRate + extraRate)/dragFac[s];
         fDrag_[j] = dragRate;
         fGradP_[j] = fGP[s];
 
@@ -1275,6 +1341,40 @@ void Foam::demCoupling::evolve
     computeVoidage();
 
     report(false);
+}
+
+
+void Foam::demCoupling::extraForceFields
+(
+    const volVectorField& U,
+    vectorField& vorticity,
+    vectorField& DuDt
+)
+{
+    bool needW = false, needA = false;
+    forAll(extraForces_, k)
+    {
+        needW = needW || extraForces_[k].needsVorticity();
+        needA = needA || extraForces_[k].needsFluidAcceleration();
+    }
+    vorticity.setSize(mesh_.nCells(), Zero);
+    DuDt.setSize(mesh_.nCells(), Zero);
+    if (needW)
+    {
+        vorticity = fvc::curl(U)().primitiveField();
+    }
+    if (needA)
+    {
+        // Du/Dt = du/dt + (u.grad)u; du/dt from U of this and the last call
+        DuDt = (U & fvc::grad(U))().primitiveField();
+        const scalar tU = mesh_.time().value() - mesh_.time().deltaTValue();
+        if (Uprev_.size() == mesh_.nCells() && tU > tUprev_)
+        {
+            DuDt += (U.primitiveField() - Uprev_)/(tU - tUprev_);
+        }
+        Uprev_ = U.primitiveField();
+        tUprev_ = tU;
+    }
 }
 
 

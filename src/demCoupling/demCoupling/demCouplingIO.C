@@ -136,6 +136,24 @@ void Foam::demCoupling::write() const
         FgradP.write(); eta.write(); coordination.write(); id.write();
     }
 
+    // extra forces f'' (extraForces): F<type>, time average over the step
+    forAll(extraForces_, k)
+    {
+        IOField<vector> f
+        (
+            cloud.fieldIOobject("F" + extraForces_[k].type(), IOobject::NO_READ),
+            n
+        );
+        for (label i = 0; i < n; ++i)
+        {
+            const auto iter = outIndex.cfind(label(a.id[i]));
+            f[i] =
+                iter.found() && fExtra_.size() == extraForces_.size()
+              ? fExtra_[k][*iter] : vector::zero;
+        }
+        if (n) f.write();
+    }
+
     // DEM state for restarts
     const fileName dir(mesh_.time().timePath()/"uniform");
     mkDir(dir);

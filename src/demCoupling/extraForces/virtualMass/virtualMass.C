@@ -1,0 +1,44 @@
+#include "virtualMass.H"
+#include "addToRunTimeSelectionTable.H"
+#include "mathematicalConstants.H"
+
+namespace Foam
+{
+namespace extraForces
+{
+    defineTypeNameAndDebug(virtualMass, 0);
+    addToRunTimeSelectionTable(extraForce, virtualMass, dictionary);
+}
+}
+
+
+Foam::extraForces::virtualMass::virtualMass(const dictionary& dict)
+:
+    extraForce(typeName, dict),
+    Cvm_(coeffs_.getOrDefault<scalar>("Cvm", 0.5))
+{
+    if (!(Cvm_ >= 0))
+    {
+        badCoeff("Cvm", Cvm_, ">= 0 (0.5 for a sphere)");
+    }
+}
+
+
+Foam::scalar Foam::extraForces::virtualMass::addedMass
+(
+    const scalar d,
+    const scalar rhof,
+    const scalar eps
+) const
+{
+    return Cvm_*rhof*constant::mathematical::pi*pow3(d)/6.0;
+}
+
+
+Foam::vector Foam::extraForces::virtualMass::force
+(
+    const particleState& s
+) const
+{
+    return addedMass(s.d, s.rhof, s.eps)*s.DuDt;
+}
