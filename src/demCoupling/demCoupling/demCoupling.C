@@ -1351,6 +1351,10 @@ void Foam::demCoupling::extraForceFields
     vectorField& DuDt
 )
 {
+    if (extraForces_.empty())
+    {
+        return;
+    }
     bool needW = false, needA = false;
     forAll(extraForces_, k)
     {
