@@ -611,6 +611,31 @@ static void wall_loop(dem_world *w, int law)
     }
 }
 
+/* The Hertz-Mindlin pair loops, compiled more than once where the compiler
+ * supports function multiversioning: a generic x86-64 (SSE2) version and
+ * versions for AVX2 and AVX-512 (wider vectors, more registers), chosen once
+ * at load time from the CPU (ifunc).  All do the same IEEE operations in the
+ * same order (no FMA: -std=c11 keeps -ffp-contract=off), so the results are
+ * bit-identical on any x86-64; -DDEM_NO_MULTIVERSION builds the generic one only. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__ELF__) && \
+    !defined(DEM_NO_MULTIVERSION)
+#ifndef DEM_CLONES
+#define DEM_CLONES "avx512f", "avx2", "default"
+#endif
+#define DEM_MULTIVERSION __attribute__((target_clones(DEM_CLONES)))
+#else
+#define DEM_MULTIVERSION
+#endif
+DEM_MULTIVERSION __attribute__((noinline))
+static void pair_loops_hm(dem_world *w, int per, double *movr, size_t *nct)
+{
+    if (w->nmat == 1) {
+        if (per) pair_loop_hm(w, 1, 1, movr, nct); else pair_loop_hm(w, 0, 1, movr, nct);
+    } else {
+        if (per) pair_loop_hm(w, 1, 0, movr, nct); else pair_loop_hm(w, 0, 0, movr, nct);
+    }
+}
+
 void dem_forces(dem_world *w, double hist_dt)
 {
     w->hdt = hist_dt;
@@ -624,11 +649,7 @@ void dem_forces(dem_world *w, double hist_dt)
     int per = w->cfg.periodic[0] || w->cfg.periodic[1] || w->cfg.periodic[2];
     switch (w->cfg.contact_law) {
     case DEM_CONTACT_HERTZ_MINDLIN:
-        if (w->nmat == 1) {
-            if (per) pair_loop_hm(w, 1, 1, &movr, &nct); else pair_loop_hm(w, 0, 1, &movr, &nct);
-        } else {
-            if (per) pair_loop_hm(w, 1, 0, &movr, &nct); else pair_loop_hm(w, 0, 0, &movr, &nct);
-        }
+        pair_loops_hm(w, per, &movr, &nct);
         break;
     case DEM_CONTACT_LINEAR_SPRING_DASHPOT:
         if (per) pair_loop(w, LAW_LSD, 1, &movr, &nct); else pair_loop(w, LAW_LSD, 0, &movr, &nct);
