@@ -259,11 +259,12 @@ _Static_assert(DEM_SCRATCH_EXTRA >= DEM_HM_BLOCK, "scratch must hold a block plu
  * since at x = 1: g = 1, sr = 0 (no damping while sliding, as in [Z]). */
 typedef struct {
     int *j, *k;
-    double *d0, *d1, *d2, *r2, *s, *msum, *mj, *aj;
-    double *delta, *sq, *dn, *fcn, *meff, *idt;
-    double *vn, *vt0, *vt1, *vt2, *hm2, *kt, *ct8, *cn8;
+    double *d0, *d1, *d2, *s, *mj, *aj;
+    double *delta, *dn, *fcn, *meff, *idt;
+    double *vn, *vt0, *vt1, *vt2, *kt, *ct8, *cn8;
     double *g, *sc, *q4;
-    double *wm2, *crol, *mur, *Ij, *ai, *mi, *Ii, *wr0, *wr1, *wr2;
+    double *wm2, *crol, *mur, *ai, *mi, *Ii, *wr0, *wr1, *wr2, *h0, *h1, *h2;
+    double *F0, *F1, *F2, *Ti0, *Ti1, *Ti2, *Tj0, *Tj1, *Tj2;
     const dem_pair **q;
     int *i;
 } hm_soa;
@@ -271,11 +272,13 @@ typedef struct {
 static void soa_map(hm_soa *b, void *mem, size_t cap)
 {
     double *p = (double *)mem;
-    double **f[] = {&b->d0, &b->d1, &b->d2, &b->r2, &b->s, &b->msum, &b->mj, &b->aj,
-                    &b->delta, &b->sq, &b->dn, &b->fcn, &b->meff, &b->idt,
-                    &b->vn, &b->vt0, &b->vt1, &b->vt2, &b->hm2, &b->kt, &b->ct8, &b->cn8,
-                    &b->g, &b->sc, &b->q4, &b->wm2, &b->crol, &b->mur, &b->Ij,
-                    &b->ai, &b->mi, &b->Ii, &b->wr0, &b->wr1, &b->wr2};
+    double **f[] = {&b->d0, &b->d1, &b->d2, &b->s, &b->mj, &b->aj,
+                    &b->delta, &b->dn, &b->fcn, &b->meff, &b->idt,
+                    &b->vn, &b->vt0, &b->vt1, &b->vt2, &b->kt, &b->ct8, &b->cn8,
+                    &b->g, &b->sc, &b->q4, &b->wm2, &b->crol, &b->mur,
+                    &b->ai, &b->mi, &b->Ii, &b->wr0, &b->wr1, &b->wr2,
+                    &b->h0, &b->h1, &b->h2, &b->F0, &b->F1, &b->F2,
+                    &b->Ti0, &b->Ti1, &b->Ti2, &b->Tj0, &b->Tj1, &b->Tj2};
     size_t nf = sizeof f / sizeof f[0];
     for (size_t a = 0; a < nf; ++a) { *f[a] = p; p += cap; }
     b->q = (const dem_pair **)p; p += cap;
@@ -283,7 +286,7 @@ static void soa_map(hm_soa *b, void *mem, size_t cap)
     b->k = b->j + cap;
     b->i = b->k + cap;
 }
-_Static_assert(36 * sizeof(double) + 3 * sizeof(int) <= DEM_SCRATCH_ENTRY, "scratch entry too small for the SoA buffers");
+_Static_assert(43 * sizeof(double) + 3 * sizeof(int) <= DEM_SCRATCH_ENTRY, "scratch entry too small for the SoA buffers");
 
 #if defined(__GNUC__)
 #define DEM_ALWAYS_INLINE __attribute__((always_inline)) inline
@@ -310,15 +313,19 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
                  u_k43m = q0->k43_mind, u_imm = q0->imumind, u_mm = q0->mumind, u_mur = q0->mu_r;
     hm_soa B;
     soa_map(&B, w->scratch, w->capscratch);
-    double *restrict Bd0 = B.d0, *restrict Bd1 = B.d1, *restrict Bd2 = B.d2, *restrict Br2 = B.r2,
-           *restrict Bs = B.s, *restrict Bmsum = B.msum, *restrict Bmj = B.mj, *restrict Baj = B.aj,
-           *restrict Bdelta = B.delta, *restrict Bsq = B.sq, *restrict Bdn = B.dn, *restrict Bfcn = B.fcn,
+    double *restrict Bd0 = B.d0, *restrict Bd1 = B.d1, *restrict Bd2 = B.d2,
+           *restrict Bs = B.s, *restrict Bmj = B.mj, *restrict Baj = B.aj,
+           *restrict Bdelta = B.delta, *restrict Bdn = B.dn, *restrict Bfcn = B.fcn,
            *restrict Bmeff = B.meff, *restrict Bidt = B.idt, *restrict Bvn = B.vn, *restrict Bvt0 = B.vt0,
-           *restrict Bvt1 = B.vt1, *restrict Bvt2 = B.vt2, *restrict Bhm2 = B.hm2, *restrict Bkt = B.kt,
+           *restrict Bvt1 = B.vt1, *restrict Bvt2 = B.vt2, *restrict Bkt = B.kt,
            *restrict Bct8 = B.ct8, *restrict Bcn8 = B.cn8, *restrict Bg = B.g, *restrict Bsc = B.sc,
            *restrict Bq4 = B.q4, *restrict Bwm2 = B.wm2, *restrict Bcrol = B.crol, *restrict Bmur = B.mur,
-           *restrict BIj = B.Ij, *restrict Bai = B.ai, *restrict Bmi = B.mi, *restrict BIi = B.Ii,
-           *restrict Bwr0 = B.wr0, *restrict Bwr1 = B.wr1, *restrict Bwr2 = B.wr2;
+           *restrict Bai = B.ai, *restrict Bmi = B.mi, *restrict BIi = B.Ii,
+           *restrict Bwr0 = B.wr0, *restrict Bwr1 = B.wr1, *restrict Bwr2 = B.wr2,
+           *restrict Bh0 = B.h0, *restrict Bh1 = B.h1, *restrict Bh2 = B.h2,
+           *restrict BF0 = B.F0, *restrict BF1 = B.F1, *restrict BF2 = B.F2,
+           *restrict BTi0 = B.Ti0, *restrict BTi1 = B.Ti1, *restrict BTi2 = B.Ti2,
+           *restrict BTj0 = B.Tj0, *restrict BTj1 = B.Tj1, *restrict BTj2 = B.Tj2;
     int *restrict Bj = B.j, *restrict Bk = B.k, *restrict Bi = B.i;
     double movr = *maxov;
     size_t nct = 0;
@@ -331,6 +338,7 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
             const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
             const double ai = rad[i], mi = mass[i], Ii = 0.4 * mi * ai * ai;
             const dem_pair *prow = pt + (size_t)mat[i] * nm;
+            const int nc0 = nc;
             /* phase 1 (gather): which entries touch; appended to the block */
             for (int k = k0; k < k1; ++k) {
                 const int j = nbj[k];
@@ -349,17 +357,18 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
                 }
                 const double mj = mass[j];
                 const dem_pair *q = prow + mat[j];
-                Bd0[nc] = d0; Bd1[nc] = d1; Bd2[nc] = d2; Br2[nc] = r2; Bs[nc] = s;
-                Bmj[nc] = mj; Bmsum[nc] = mi + mj; Baj[nc] = aj; BIj[nc] = 0.4 * mj * aj * aj;
-                Bai[nc] = ai; Bmi[nc] = mi; BIi[nc] = Ii;
+                Bd0[nc] = d0; Bd1[nc] = d1; Bd2[nc] = d2; Bs[nc] = s;
+                Bmj[nc] = mj; Baj[nc] = aj;
                 if (!uniform) {
                     Bcn8[nc] = q->cn8; Bct8[nc] = q->mu > 0.0 ? q->ct8 : 0.0;
                     Bkt[nc] = q->k43; Bsc[nc] = q->k43_mind; Bidt[nc] = q->imumind; Bg[nc] = q->mumind;
                     Bmur[nc] = q->mu_r;
                 }
-                Bi[nc] = (int)i; Bj[nc] = j; Bk[nc] = k;
+                Bj[nc] = j; Bk[nc] = k;
                 nc += touch;
             }
+            /* the row's constants, for its touching entries only */
+            for (int a = nc0; a < nc; ++a) { Bai[a] = ai; Bmi[a] = mi; BIi[a] = Ii; Bi[a] = (int)i; }
             if (nc < DEM_HM_BLOCK) continue;  /* rows are never split: buffer >= block + longest row */
         }
         if (nc == 0) continue;
@@ -367,7 +376,8 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
         /* phase 2 (vector): geometry, normal force */
         DEM_IVDEP
         for (int a = 0; a < nc; ++a) {
-            const double r0 = sqrt(Br2[a]), s = Bs[a], msum = Bmsum[a];
+            const double r0 = sqrt(Bd0[a] * Bd0[a] + Bd1[a] * Bd1[a] + Bd2[a] * Bd2[a]);
+            const double s = Bs[a], msum = Bmi[a] + Bmj[a];
             const double r = r0 + (r0 > 0.0 ? 0.0 : s);  /* coincident centres: treated as delta = 0 */
             const double delta = s - r;            /* may round to 0 although r2 < s^2 */
             const double ds = delta + (delta > 0.0 ? 0.0 : s);  /* no select around the division */
@@ -379,7 +389,6 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
             const double sq = sqrt(rstar * delta);
             const double k43 = uniform ? u_k43 : Bkt[a];
             Bdelta[a] = delta;
-            Bsq[a] = sq;
             Bfcn[a] = k43 * sq * delta;
             Bdn[a] = sqrt(meff * sq);
             Bmeff[a] = (uniform ? u_mm : Bg[a]) * delta;                 /* delta_t,max = mu mindlin delta */
@@ -390,7 +399,7 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
             const double ov = Bdelta[a];
             if (ov > movr * Bs[a]) movr = ov / Bs[a];
         }
-        /* phase 3 (gather): relative velocity, history update */
+        /* phase 3 (gather): relative velocity, history and relative spin into the buffers */
         for (int a = 0; a < nc; ++a) {
             const int j = Bj[a], ii = Bi[a];
             const double aj = Baj[a], ai = Bai[a];
@@ -402,17 +411,9 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
             const double vc1 = vi[1] - vj[1] - (W2 * n[0] - W0 * n[2]);
             const double vc2 = vi[2] - vj[2] - (W0 * n[1] - W1 * n[0]);
             const double vn = vc0 * n[0] + vc1 * n[1] + vc2 * n[2];
-            const double vt0 = vc0 - vn * n[0], vt1 = vc1 - vn * n[1], vt2 = vc2 - vn * n[2];
-            Bvn[a] = vn; Bvt0[a] = vt0; Bvt1[a] = vt1; Bvt2[a] = vt2;
-            double *h = nbh + 3 * (size_t)Bk[a];
-            if (Bidt[a] > 0.0) {
-                rotate_history(h, n);
-                h[0] += vt0 * dt; h[1] += vt1 * dt; h[2] += vt2 * dt;
-                Bhm2[a] = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-            } else {
-                h[0] = h[1] = h[2] = 0.0;
-                Bhm2[a] = 0.0;
-            }
+            Bvn[a] = vn; Bvt0[a] = vc0 - vn * n[0]; Bvt1[a] = vc1 - vn * n[1]; Bvt2[a] = vc2 - vn * n[2];
+            const double *h = nbh + 3 * (size_t)Bk[a];
+            Bh0[a] = h[0]; Bh1[a] = h[1]; Bh2[a] = h[2];
             const double wr0 = wi[0] - wj[0], wr1 = wi[1] - wj[1], wr2 = wi[2] - wj[2];
             Bwm2[a] = wr0 * wr0 + wr1 * wr1 + wr2 * wr2;
             Bwr0[a] = wr0; Bwr1[a] = wr1; Bwr2[a] = wr2;
@@ -420,10 +421,28 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
         /* phase 4 (vector): tangential law factors, rolling factor */
         DEM_IVDEP
         for (int a = 0; a < nc; ++a) {
+            /* history: rotate_history and h += v_t dt, branch-free (the same
+               operations where rotate_history does them; selects elsewhere) */
+            const double n0 = Bd0[a], n1 = Bd1[a], n2 = Bd2[a];
+            double h0 = Bh0[a], h1 = Bh1[a], h2 = Bh2[a];
+            const double hn = h0 * n0 + h1 * n1 + h2 * n2;
+            const double hh = h0 * h0 + h1 * h1 + h2 * h2;
+            double p0 = h0 - hn * n0, p1 = h1 - hn * n1, p2 = h2 - hn * n2;
+            const double h2n = p0 * p0 + p1 * p1 + p2 * p2;
+            const int resc = hn != 0.0 && h2n > 0.0 && hn * hn > 1e-12 * h2n;
+            /* arithmetic guard (no select feeding the division): where resc
+               is false the quotient is ~1 or hh / 1, never an overflow */
+            const double sres = sqrt(hh / (h2n + (h2n > 0.0 ? 0.0 : 1.0)));
+            p0 = resc ? p0 * sres : p0; p1 = resc ? p1 * sres : p1; p2 = resc ? p2 * sres : p2;
+            h0 = hn != 0.0 ? p0 : h0; h1 = hn != 0.0 ? p1 : h1; h2 = hn != 0.0 ? p2 : h2;
+            h0 += Bvt0[a] * dt; h1 += Bvt1[a] * dt; h2 += Bvt2[a] * dt;
+            const int fric = Bidt[a] > 0.0;        /* mu = 0: no tangential spring */
+            h0 = fric ? h0 : 0.0; h1 = fric ? h1 : 0.0; h2 = fric ? h2 : 0.0;
+            Bh0[a] = h0; Bh1[a] = h1; Bh2[a] = h2;
             /* clamps and guards are arithmetic (no select feeding sqrt or a
                division), so no floating-point exception can be raised even
                where the compiler evaluates both sides of a select */
-            const double hm = sqrt(Bhm2[a]);
+            const double hm = sqrt(h0 * h0 + h1 * h1 + h2 * h2);
             const double r1 = 1.0 - hm * Bidt[a];
             const double r = 0.5 * (r1 + fabs(r1));              /* max(1 - x, 0) */
             const double sr = sqrt(r);
@@ -436,32 +455,42 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
             /* rolling: c = -min(mu_r f_cn / wm, Ii Ij / (dt (Ii + Ij))) */
             const double wm = sqrt(Bwm2[a]);
             const double wmsafe = wm + (wm > 0.0 ? 0.0 : 1.0);
-            const double Ii = BIi[a], Ij = BIj[a], den = dtl * (Ii + Ij);
+            const double Ii = BIi[a], Ij = 0.4 * Bmj[a] * Baj[a] * Baj[a], den = dtl * (Ii + Ij);
             const double inv2 = 1.0 / (wmsafe * den);
             const double c1 = (uniform ? u_mur : Bmur[a]) * Bfcn[a] * den * inv2, c2 = Ii * Ij * wmsafe * inv2;
             Bcrol[a] = wm > 0.0 ? -(c1 < c2 ? c1 : c2) : 0.0;
         }
-        /* phase 5 (scatter): forces and torques */
+        /* phase 5 (vector): history limit, forces and torques */
+        DEM_IVDEP
         for (int a = 0; a < nc; ++a) {
-            const int j = Bj[a], ii = Bi[a];
             const double aj = Baj[a], ai = Bai[a];
             const double n0 = Bd0[a], n1 = Bd1[a], n2 = Bd2[a];
-            double *h = nbh + 3 * (size_t)Bk[a];
             const double sc = Bsc[a];
-            if (sc < 1.0) { h[0] *= sc; h[1] *= sc; h[2] *= sc; }
+            const double h0 = sc < 1.0 ? Bh0[a] * sc : Bh0[a], h1 = sc < 1.0 ? Bh1[a] * sc : Bh1[a],
+                         h2 = sc < 1.0 ? Bh2[a] * sc : Bh2[a];
+            Bh0[a] = h0; Bh1[a] = h1; Bh2[a] = h2;
             const double ce = -Bkt[a] * Bg[a], cd = -(uniform ? u_ct8 : Bct8[a]) * Bdn[a] * Bq4[a];
-            const double ft0 = ce * h[0] + cd * Bvt0[a];
-            const double ft1 = ce * h[1] + cd * Bvt1[a];
-            const double ft2 = ce * h[2] + cd * Bvt2[a];
+            const double ft0 = ce * h0 + cd * Bvt0[a];
+            const double ft1 = ce * h1 + cd * Bvt1[a];
+            const double ft2 = ce * h2 + cd * Bvt2[a];
             const double fn = Bfcn[a] - (uniform ? u_cn8 : Bcn8[a]) * Bdn[a] * Bvn[a];
-            const double F0 = fn * n0 + ft0, F1 = fn * n1 + ft1, F2 = fn * n2 + ft2;
-            f[3 * ii] += F0; f[3 * ii + 1] += F1; f[3 * ii + 2] += F2;
-            f[3 * j] -= F0; f[3 * j + 1] -= F1; f[3 * j + 2] -= F2;
+            BF0[a] = fn * n0 + ft0; BF1[a] = fn * n1 + ft1; BF2[a] = fn * n2 + ft2;
             const double c0 = n1 * ft2 - n2 * ft1, c1 = n2 * ft0 - n0 * ft2, c2 = n0 * ft1 - n1 * ft0;
             const double cr = Bcrol[a];
             const double M0 = cr * Bwr0[a], M1 = cr * Bwr1[a], M2 = cr * Bwr2[a];
-            t[3 * ii] += M0 - ai * c0; t[3 * ii + 1] += M1 - ai * c1; t[3 * ii + 2] += M2 - ai * c2;
-            t[3 * j] -= aj * c0 + M0; t[3 * j + 1] -= aj * c1 + M1; t[3 * j + 2] -= aj * c2 + M2;
+            BTi0[a] = M0 - ai * c0; BTi1[a] = M1 - ai * c1; BTi2[a] = M2 - ai * c2;
+            BTj0[a] = aj * c0 + M0; BTj1[a] = aj * c1 + M1; BTj2[a] = aj * c2 + M2;
+        }
+        /* phase 6 (scatter): history, forces and torques */
+        for (int a = 0; a < nc; ++a) {
+            const int j = Bj[a], ii = Bi[a];
+            double *h = nbh + 3 * (size_t)Bk[a];
+            h[0] = Bh0[a]; h[1] = Bh1[a]; h[2] = Bh2[a];
+            const double F0 = BF0[a], F1 = BF1[a], F2 = BF2[a];
+            f[3 * ii] += F0; f[3 * ii + 1] += F1; f[3 * ii + 2] += F2;
+            f[3 * j] -= F0; f[3 * j + 1] -= F1; f[3 * j + 2] -= F2;
+            t[3 * ii] += BTi0[a]; t[3 * ii + 1] += BTi1[a]; t[3 * ii + 2] += BTi2[a];
+            t[3 * j] -= BTj0[a]; t[3 * j + 1] -= BTj1[a]; t[3 * j + 2] -= BTj2[a];
         }
         nc = 0;
     }

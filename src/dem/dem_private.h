@@ -203,7 +203,7 @@ dem_status dem_pairs_update(dem_world *w);
 dem_status dem_ext_alloc(dem_world *w);
 dem_status dem_list_build(dem_world *w);
 dem_status dem_scratch_ensure(dem_world *w);
-#define DEM_SCRATCH_ENTRY 320 /* bytes per contact of the phased loop buffer */
+#define DEM_SCRATCH_ENTRY 360 /* bytes per contact of the phased loop buffer */
 #define DEM_SCRATCH_EXTRA 80  /* entries beyond the longest row (block of the phased loop) */
 void       dem_forces(dem_world *w, double hist_dt);
 dem_status dem_append_particle(dem_world *w, const dem_particle *p);
