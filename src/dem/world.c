@@ -399,8 +399,12 @@ static dem_status reserve_raw(dem_world *w, size_t cap)
 dem_status dem_reserve(dem_world *w, size_t cap)
 {
     if (cap <= w->cap) return DEM_OK;
-    /* grow by half for one-at-a-time insertion, exactly for bulk requests */
-    size_t nc = w->cap + w->cap / 2;
+    /* one more particle (insertion one at a time): grow by half; a bulk
+       request (several particles): to the need, or by an eighth when that
+       is more (repeated bulk adds stay amortised), so that the capacity
+       slack stays below 1/8 of the arrays (memory per particle) */
+    const int one = cap == w->cap + 1;
+    size_t nc = one ? w->cap + w->cap / 2 : w->cap + w->cap / 8;
     if (nc < 64) nc = 64;
     if (nc < cap) nc = cap;
     if (reserve_raw(w, nc) != DEM_OK)
