@@ -338,7 +338,6 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
             const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
             const double ai = rad[i], mi = mass[i], Ii = 0.4 * mi * ai * ai;
             const dem_pair *prow = pt + (size_t)mat[i] * nm;
-            const int nc0 = nc;
             /* phase 1 (gather): which entries touch; appended to the block */
             for (int k = k0; k < k1; ++k) {
                 const int j = nbj[k];
@@ -365,10 +364,9 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
                     Bmur[nc] = q->mu_r;
                 }
                 Bj[nc] = j; Bk[nc] = k;
+                Bai[nc] = ai; Bmi[nc] = mi; BIi[nc] = Ii; Bi[nc] = (int)i;
                 nc += touch;
             }
-            /* the row's constants, for its touching entries only */
-            for (int a = nc0; a < nc; ++a) { Bai[a] = ai; Bmi[a] = mi; BIi[a] = Ii; Bi[a] = (int)i; }
             if (nc < DEM_HM_BLOCK) continue;  /* rows are never split: buffer >= block + longest row */
         }
         if (nc == 0) continue;
