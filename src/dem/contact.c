@@ -643,16 +643,8 @@ static void wall_loop(dem_world *w, int law)
  * versions for AVX2 and AVX-512 (wider vectors, more registers), chosen once
  * at load time from the CPU (ifunc).  All do the same IEEE operations in the
  * same order (no FMA: -std=c11 keeps -ffp-contract=off), so the results are
- * bit-identical on any x86-64; -DDEM_NO_MULTIVERSION builds the generic one only. */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__ELF__) && \
-    !defined(DEM_NO_MULTIVERSION)
-#ifndef DEM_CLONES
-#define DEM_CLONES "avx512f", "avx2", "default"
-#endif
-#define DEM_MULTIVERSION __attribute__((target_clones(DEM_CLONES)))
-#else
-#define DEM_MULTIVERSION
-#endif
+ * bit-identical on any x86-64; -DDEM_NO_MULTIVERSION builds the generic one only
+ * (DEM_MULTIVERSION, dem_private.h). */
 DEM_MULTIVERSION __attribute__((noinline))
 static void pair_loops_hm(dem_world *w, int per, double *movr, size_t *nct)
 {

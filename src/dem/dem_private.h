@@ -197,6 +197,22 @@ struct dem_world {
     size_t capscratch;       /* entries */
 };
 
+/*--- function multiversioning ----------------------------------------------*/
+/* Hot loops (Hertz-Mindlin pair loop, kick/drift) are compiled for each of
+ * DEM_CLONES and the CPU picks one at load time (ifunc, GCC on x86-64 ELF);
+ * every clone does the same IEEE operations (no FMA under -std=c11), so the
+ * results are bit-identical.  -DDEM_NO_MULTIVERSION: generic x86-64 only;
+ * -DDEM_CLONES='"avx2","default"' e.g. restricts the set. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__ELF__) && \
+    !defined(DEM_NO_MULTIVERSION)
+#ifndef DEM_CLONES
+#define DEM_CLONES "avx512f", "avx2", "default"
+#endif
+#define DEM_MULTIVERSION __attribute__((target_clones(DEM_CLONES)))
+#else
+#define DEM_MULTIVERSION
+#endif
+
 /*--- internal functions ----------------------------------------------------*/
 dem_status dem_reserve(dem_world *w, size_t cap);
 dem_status dem_pairs_update(dem_world *w);

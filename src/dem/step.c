@@ -143,10 +143,7 @@ static inline double kick_drift_loop(dem_world *w, double h, double dt, const do
     }
     return d2max;
 }
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__ELF__) && \
-    !defined(DEM_NO_MULTIVERSION)
-__attribute__((target_clones("avx512f", "avx2", "default")))
-#endif
+DEM_MULTIVERSION
 static double kick_drift_plain(dem_world *w, double h, double dt, const double *g, int nk)
 {
     return nk == 2 ? kick_drift_loop(w, h, dt, g, 2) : kick_drift_loop(w, h, dt, g, 1);
