@@ -12,6 +12,7 @@
   inlets (with owed amounts and pre-drawn sizes), outlet totals, removal
   records, RNG state, time and step.
 \*---------------------------------------------------------------------------*/
+#define _POSIX_C_SOURCE 200809L /* open_memstream, fmemopen */
 #include "dem_private.h"
 #include <math.h>
 #include <stdio.h>
@@ -124,6 +125,23 @@ dem_status dem_world_save(const dem_world *w, const char *path)
     save_world(&o, w);
     if (fclose(f) != 0) o.bad = 1;
     if (o.bad) return DEM_FAIL(w, DEM_ERR_IO, "save: write error on '%s'", path);
+    return DEM_OK;
+}
+
+dem_status dem_world_save_memory(const dem_world *w, void **buf, size_t *size)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (!buf || !size) return DEM_FAIL(w, DEM_ERR_ARG, "save_memory: buf and size must not be NULL");
+    char *p = NULL;
+    size_t n = 0;
+    FILE *f = open_memstream(&p, &n);
+    if (!f) return DEM_FAIL(w, DEM_ERR_NOMEM, "save_memory: cannot open a memory stream");
+    wio o = {f, 0};
+    save_world(&o, w);
+    if (fclose(f) != 0) o.bad = 1;
+    if (o.bad) { free(p); return DEM_FAIL(w, DEM_ERR_NOMEM, "save_memory: out of memory"); }
+    *buf = p;
+    *size = n;
     return DEM_OK;
 }
 
@@ -284,16 +302,15 @@ fail:
     return DEM_FAIL(err, st, "restore: '%s': out of memory", path);
 }
 
-dem_status dem_world_restore(dem_world *w, const char *path)
+/* Load a state from an open stream into w (name for messages); w is
+ * replaced only if the whole state reads back. */
+static dem_status restore_stream(dem_world *w, FILE *f, const char *name)
 {
-    if (!w || !path) return DEM_ERR_ARG;
-    FILE *f = fopen(path, "rb");
-    if (!f) return DEM_FAIL(w, DEM_ERR_IO, "restore: cannot open '%s' for reading", path);
     dem_world *nw = NULL;
     dem_status st = dem_world_create(&nw);
     if (st) { fclose(f); return DEM_FAIL(w, st, "restore: out of memory"); }
     wio o = {f, 0};
-    st = load_world(&o, nw, path, w);
+    st = load_world(&o, nw, name, w);
     fclose(f);
     if (st) { dem_world_destroy(&nw); return st; }
     /* swap contents, keep the logger */
@@ -304,9 +321,26 @@ dem_status dem_world_restore(dem_world *w, const char *path)
     w->log = lf; w->log_user = lu;
     w->err[0] = '\0';
     dem_world_destroy(&nw);
-    dem_log_(w, DEM_LOG_INFO, "restored '%s': %zu particles, step %lld, t = %g", path, w->n,
+    dem_log_(w, DEM_LOG_INFO, "restored '%s': %zu particles, step %lld, t = %g", name, w->n,
              (long long)w->step, w->time);
     return dem_pairs_update(w);
+}
+
+dem_status dem_world_restore(dem_world *w, const char *path)
+{
+    if (!w || !path) return DEM_ERR_ARG;
+    FILE *f = fopen(path, "rb");
+    if (!f) return DEM_FAIL(w, DEM_ERR_IO, "restore: cannot open '%s' for reading", path);
+    return restore_stream(w, f, path);
+}
+
+dem_status dem_world_restore_memory(dem_world *w, const void *buf, size_t size)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (!buf || size == 0) return DEM_FAIL(w, DEM_ERR_ARG, "restore_memory: empty buffer (%zu bytes)", size);
+    FILE *f = fmemopen((void *)buf, size, "rb");
+    if (!f) return DEM_FAIL(w, DEM_ERR_NOMEM, "restore_memory: cannot open a memory stream");
+    return restore_stream(w, f, "(memory)");
 }
 
 /*--- pack / unpack ------------------------------------------------------------------*/

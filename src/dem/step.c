@@ -149,27 +149,48 @@ static double kick_drift_plain(dem_world *w, double h, double dt, const double *
     return nk == 2 ? kick_drift_loop(w, h, dt, g, 2) : kick_drift_loop(w, h, dt, g, 1);
 }
 
+/* The contact time the step check uses (HUGE_VAL without particles), after
+ * the pair table update and the state check of dem_world_step. */
+static dem_status step_contact_time(dem_world *w, double *tc, double *vimp)
+{
+    dem_status st = dem_pairs_update(w);
+    if (st) return st;
+    double vmax = 0;
+    if ((st = check_state(w, &vmax))) return st;
+    *vimp = 2.0 * vmax + max_wall_speed(w);
+    *tc = HUGE_VAL;
+    if (w->n) {
+        int rayleigh = 1;
+        if (w->cfg.impact_speed > 0) { *vimp = fmax(*vimp, w->cfg.impact_speed); rayleigh = 0; }
+        dem_contact_time_internal(w, *vimp, rayleigh, tc);
+    }
+    return DEM_OK;
+}
+
+dem_status dem_world_max_dt(dem_world *w, double *dt_max)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (!dt_max) return DEM_FAIL(w, DEM_ERR_ARG, "max_dt: dt_max must not be NULL");
+    double tc, vimp;
+    dem_status st = step_contact_time(w, &tc, &vimp);
+    if (st) return st;
+    *dt_max = w->n ? w->cfg.max_dt_fraction * tc : HUGE_VAL;
+    return DEM_OK;
+}
+
 dem_status dem_world_step(dem_world *w, int64_t nsteps)
 {
     if (!w) return DEM_ERR_ARG;
     if (nsteps < 0) return DEM_FAIL(w, DEM_ERR_RANGE, "nsteps = %lld; allowed >= 0", (long long)nsteps);
     if (nsteps == 0) return DEM_OK;
-    dem_status st = dem_pairs_update(w);
+    double tc, vimp;
+    dem_status st = step_contact_time(w, &tc, &vimp);
     if (st) return st;
-    double vmax = 0;
-    if ((st = check_state(w, &vmax))) return st;
-    double vw = max_wall_speed(w);
-    if (w->n) {
-        double tc;
-        double vimp = 2.0 * vmax + vw;
-        int rayleigh = 1;
-        if (w->cfg.impact_speed > 0) { vimp = fmax(vimp, w->cfg.impact_speed); rayleigh = 0; }
-        dem_contact_time_internal(w, vimp, rayleigh, &tc);
-        if (w->cfg.dt > w->cfg.max_dt_fraction * tc)
-            return DEM_FAIL(w, DEM_ERR_TIMESTEP, "dt = %g exceeds max_dt_fraction %g x smallest contact "
-                            "time %g s (impact speed %g m/s) = %g s", w->cfg.dt, w->cfg.max_dt_fraction,
-                            tc, vimp, w->cfg.max_dt_fraction * tc);
-    }
+    if (w->n && w->cfg.dt > w->cfg.max_dt_fraction * tc)
+        return DEM_FAIL(w, DEM_ERR_TIMESTEP, "dt = %g exceeds max_dt_fraction %g x smallest contact "
+                        "time %g s (impact speed %g m/s) = %g s", w->cfg.dt, w->cfg.max_dt_fraction,
+                        tc, vimp, w->cfg.max_dt_fraction * tc);
+    const double vw = max_wall_speed(w);
     const double dt = w->cfg.dt, h = 0.5 * dt;
     const double *g = w->cfg.gravity;
     if (!w->list_valid && (st = dem_list_build(w))) return st;

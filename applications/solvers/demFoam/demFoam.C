@@ -28,6 +28,17 @@ Description
 #include "pimpleControl.H"
 #include "fvOptions.H"
 #include "demCoupling.H"
+#include <chrono>
+#include <csetjmp>
+#include <csignal>
+
+// A floating-point exception in the fluid solution (OpenFOAM's trapFpe)
+// jumps back to the time loop, which writes the last good state
+static sigjmp_buf fpeJump;
+static void fpeHandler(int)
+{
+    siglongjmp(fpeJump, 1);
+}
 
 int main(int argc, char *argv[])
 {
@@ -35,6 +46,14 @@ int main(int argc, char *argv[])
     (
         "Transient incompressible CFD-DEM solver with the momentum"
         " formulations set I/II/III of Zhou et al. (2010)"
+    );
+
+    argList::addBoolOption
+    (
+        "checkInput",
+        "check constant/demProperties against the mesh and the initial"
+        " particles (keywords, types, ranges, names, overlaps, time step),"
+        " report and stop without writing anything"
     );
 
     #include "postProcess.H"
@@ -48,7 +67,35 @@ int main(int argc, char *argv[])
     #include "createFields.H"
     #include "initContinuityErrs.H"
 
+    if (args.found("checkInput"))
+    {
+        Info<< "\ndemFoam -checkInput: constant/demProperties, the mesh and "
+            << "the initial particles are valid; nothing written\nEnd\n"
+            << endl;
+        return 0;
+    }
+
+    // keep the previous time of every field, for the last good state
+    #include "storeOldTimes.H"
+    const label iStart = runTime.timeIndex();
+    const label injectFluidNaN = demCoupling::injectedStep("fluidNaN");
+    const label injectFpe = demCoupling::injectedStep("fpe");
+    std::string failure;
+    volatile scalar tGood = runTime.value();
+    volatile label iGood = runTime.timeIndex();
+
     Info<< "\nStarting time loop\n" << endl;
+
+    if (sigsetjmp(fpeJump, 1))
+    {
+        failure = "floating-point exception (SIGFPE) in the fluid solution";
+        #include "writeLastGood.H"
+    }
+    struct sigaction fpeAction, fpeDefault;
+    fpeAction.sa_handler = fpeHandler;
+    sigemptyset(&fpeAction.sa_mask);
+    fpeAction.sa_flags = 0;
+    sigaction(SIGFPE, &fpeAction, &fpeDefault);
 
     while (runTime.run())
     {
@@ -56,6 +103,9 @@ int main(int argc, char *argv[])
         #include "CourantNo.H"
         #include "setDeltaT.H"
 
+        tGood = runTime.value();
+        iGood = runTime.timeIndex();
+        dem.checkpoint();
         ++runTime;
 
         Info<< "Time = " << runTime.timeName() << nl << endl;
@@ -70,6 +120,13 @@ int main(int argc, char *argv[])
             );
             dem.evolve(U, p, divTau, laminarTransport.nu()());
         }
+        if (!dem.failure().empty())
+        {
+            failure = dem.failure();
+            #include "writeLastGood.H"
+        }
+
+        const auto tFluid0 = std::chrono::steady_clock::now();
 
         epsf = fvc::interpolate(eps);
         epsPhi = epsf*phi;
@@ -92,7 +149,29 @@ int main(int argc, char *argv[])
             }
         }
 
+        if (runTime.timeIndex() - iStart == injectFluidNaN)
+        {
+            U[0].x() = std::numeric_limits<scalar>::quiet_NaN();
+        }
+        if (runTime.timeIndex() - iStart == injectFpe)
+        {
+            volatile scalar zero = 0;
+            U[0].x() = 1/zero;
+        }
+        failure = demCoupling::nonFinite(U, p);
+        if (!failure.empty())
+        {
+            #include "writeLastGood.H"
+        }
+
         dem.updateDriving(U);
+        dem.addFluidTime
+        (
+            std::chrono::duration<scalar>
+            (
+                std::chrono::steady_clock::now() - tFluid0
+            ).count()
+        );
 
         if (runTime.writeTime())
         {
@@ -102,7 +181,9 @@ int main(int argc, char *argv[])
         runTime.write();
 
         runTime.printExecutionTime(Info);
+        dem.progress(!runTime.run());
     }
+    sigaction(SIGFPE, &fpeDefault, nullptr);
 
     Info<< "End\n" << endl;
 

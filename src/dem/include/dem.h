@@ -178,6 +178,10 @@ int64_t    dem_world_reorder_count(const dem_world *w);
  *  on, tests/dem/test_fpe.c); a caller running with traps may still prefer
  *  to hold them around the call (feholdexcept) as defence in depth. */
 dem_status dem_world_step(dem_world *w, int64_t nsteps);
+/** The largest time step the next dem_world_step accepts now: max_dt_fraction
+ *  x the contact time of its check (HUGE_VAL without particles); the state
+ *  is checked first (DEM_ERR_NAN as dem_world_step). */
+dem_status dem_world_max_dt(dem_world *w, double *dt_max);
 
 /** Smallest contact time estimate over the material pairs and particle
  *  sizes present (Hertz: at the given impact speed; linear: t_c of [S]). */
@@ -268,6 +272,10 @@ dem_status dem_world_particle_contacts(const dem_world *w, int *coordination, do
  *  restored world continues bit-identically. */
 dem_status dem_world_save(const dem_world *w, const char *path);
 dem_status dem_world_restore(dem_world *w, const char *path);
+/** The same state in memory (e.g. a last-good-state checkpoint): *buf is
+ *  malloc'ed, release it with free(); restore leaves w unchanged on error. */
+dem_status dem_world_save_memory(const dem_world *w, void **buf, size_t *size);
+dem_status dem_world_restore_memory(dem_world *w, const void *buf, size_t size);
 
 /*--- decomposition support --------------------------------------------------------*/
 /** Bytes needed to pack particle i with its contact history (buf NULL) or pack it. */

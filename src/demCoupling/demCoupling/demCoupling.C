@@ -1,4 +1,6 @@
 #include "demCoupling.H"
+#include "OStringStream.H"
+#include <limits>
 #include "fvc.H"
 #include "fvm.H"
 #include "emptyPolyPatch.H"
@@ -89,7 +91,8 @@ Foam::demCoupling::demCoupling
 (
     const fvMesh& mesh,
     const uniformDimensionedVectorField& g,
-    const scalar rhof
+    const scalar rhof,
+    const bool checkOnly
 )
 :
     mesh_(mesh),
@@ -103,6 +106,10 @@ Foam::demCoupling::demCoupling
             IOobject::MUST_READ_IF_MODIFIED,
             IOobject::NO_WRITE
         )
+    ),
+    inputChecked_
+    (
+        checkDictionary(dict_, dict_.instance()/dict_.name(), mesh)
     ),
     g_(g.value()),
     rhof_(rhof),
@@ -160,6 +167,22 @@ Foam::demCoupling::demCoupling
     tauCoeff_(fieldIO(mesh, "viscousCoeff", false), mesh,
             dimensionedScalar("one", dimless, 1.0), "zeroGradient")
 {
+    failure_.clear();
+    maxLost_ = dict_.getOrDefault<label>("maxLostParticles", 0);
+    nLostTotal_ = 0;
+    snapBuf_ = nullptr;
+    snapSize_ = 0;
+    snapLostUnknown_ = 0;
+    snapBedEta_ = 0;
+    wallStart_ = std::chrono::steady_clock::now();
+    wallLastProgress_ = 0;
+    tDem_ = tCoupling_ = tFluid_ = 0;
+    progressInterval_ = dict_.getOrDefault<scalar>("progressInterval", 60);
+    progressSteps_ = dict_.getOrDefault<label>("progressSteps", 0);
+    nSteps_ = 0;
+    startTime_ = mesh.time().value();
+    injectParticleNaN_ = injectedStep("particleNaN");
+
     if (Pstream::parRun())
     {
         FatalErrorInFunction
@@ -199,6 +222,20 @@ Foam::demCoupling::demCoupling
     demDt_ = demDict.get<scalar>("timeStep");
     dragUpdateInterval_ = demDict.getOrDefault<label>("dragUpdateInterval", 0);
 
+    {
+        const scalar dt = mesh.time().deltaTValue();
+        const scalar ratio = dt/demDt_;
+        if (std::round(ratio) < 1 || mag(ratio - std::round(ratio)) > 1e-6*ratio)
+        {
+            FatalIOErrorInFunction(demDict)
+                << "constant/demProperties: keyword dem/timeStep value "
+                << demDt_ << ": the fluid time step deltaT " << dt
+                << " s of system/controlDict is " << ratio << " times it;"
+                << " allowed: deltaT a whole multiple (>= 1) of dem/timeStep"
+                << exit(FatalIOError);
+        }
+    }
+
     configureWorld();
     addWalls();
     addOutletsAndInlets();
@@ -219,6 +256,8 @@ Foam::demCoupling::demCoupling
     else
     {
         addInitialParticles();
+        checkInitialState();
+        if (checkOnly) return;
         const scalar tSettle = dict_.getOrDefault<scalar>("settlingTime", 0);
         if (tSettle > 0)
         {
@@ -228,12 +267,18 @@ Foam::demCoupling::demCoupling
             world_.step(n, "dem_world_step (settling)");
         }
     }
+    if (checkOnly) return;
 
     eps_.oldTime();
     locateAll();
     computeWeights();
     computeVoidage();
     eps_.oldTime() == eps_;
+    if (!failure_.empty())
+    {
+        FatalErrorInFunction
+            << failure_.c_str() << " (before the first step)" << exit(FatalError);
+    }
 
     Info<< "demCoupling: " << dem_world_count(world_) << " particles, "
         << "formulation " << dict_.get<word>("formulation")
@@ -919,6 +964,17 @@ void Foam::demCoupling::locateAll()
         Info<< "demCoupling: " << nOut << " particles left through outlets, "
             << nLost << " lost" << endl;
     }
+    nLostTotal_ += nLost;
+    if (nLost && nLostTotal_ > maxLost_ && failure_.empty())
+    {
+        OStringStream os;
+        os  << nLostTotal_ << " particles lost in total (left the mesh through"
+            << " patches that are not in outletPatches, see the warnings"
+            << " above); constant/demProperties allows maxLostParticles "
+            << maxLost_ << ". Make the patch an outlet (outletPatches), fix"
+            << " the walls, lower the time steps, or raise maxLostParticles";
+        failure_ = os.str();
+    }
     if (nOut > 0)
     {
         writeRemovedRecords();
@@ -1039,6 +1095,9 @@ void Foam::demCoupling::evolve
     const volScalarField& nu
 )
 {
+    const auto tEvolve0 = std::chrono::steady_clock::now();
+    const scalar tDem0 = tDem_;
+
     const scalar dt = mesh_.time().deltaTValue();
     const label nDem = label(dt/demDt_ + 0.5);
     if (nDem < 1 || mag(nDem*demDt_ - dt) > 1e-6*dt)
@@ -1211,7 +1270,23 @@ void Foam::demCoupling::evolve
         }
         if (!frozen_)
         {
-            world_.step(m);
+            if (injectParticleNaN_ == nSteps_ + 1 && done == 0 && a.n_owned)
+            {
+                a.v[0] = std::numeric_limits<double>::quiet_NaN();
+            }
+            const auto t0 = std::chrono::steady_clock::now();
+            const dem_status st = world_.tryStep(m);
+            tDem_ += std::chrono::duration<scalar>
+            (
+                std::chrono::steady_clock::now() - t0
+            ).count();
+            if (st != DEM_OK)
+            {
+                failure_ = std::string("DEM core: ") + dem_status_string(st)
+                  + ": " + world_.lastError();
+                ++nSteps_;
+                return;
+            }
         }
         done += m;
     }
@@ -1339,6 +1414,14 @@ void Foam::demCoupling::evolve
     locateAll();
     computeWeights();
     computeVoidage();
+
+    ++nSteps_;
+    tCoupling_ +=
+        std::chrono::duration<scalar>
+        (
+            std::chrono::steady_clock::now() - tEvolve0
+        ).count()
+      - (tDem_ - tDem0);
 
     report(false);
 }

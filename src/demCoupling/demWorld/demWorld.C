@@ -61,12 +61,18 @@ dem_arrays Foam::demWorld::arrays() const
 }
 
 
-void Foam::demWorld::step(const int64_t nsteps, const char* what)
+dem_status Foam::demWorld::tryStep(const int64_t nsteps)
 {
     std::fenv_t env;
     std::feholdexcept(&env);            // save and suspend traps
     const dem_status s = dem_world_step(w_, nsteps);
     std::feclearexcept(FE_ALL_EXCEPT);
     std::fesetenv(&env);                // restore OpenFOAM's traps
-    check(s, what);
+    return s;
+}
+
+
+void Foam::demWorld::step(const int64_t nsteps, const char* what)
+{
+    check(tryStep(nsteps), what);
 }

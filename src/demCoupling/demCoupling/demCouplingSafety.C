@@ -1,0 +1,196 @@
+/*---------------------------------------------------------------------------*\
+  demFoam
+
+Description
+    Clean failure and progress of a run (issue 6):
+      - checkpoint()/restoreCheckpoint(): the state at the start of a fluid
+        step kept in memory, so that a step that fails (non-finite particle
+        state, runaway overlap, lost particles, non-finite fluid) can be
+        undone and the last good state written (demFoam writeLastGood.H);
+      - nonFinite(): scan of the fluid state;
+      - progress(): one log line at progressInterval (wall seconds) or every
+        progressSteps fluid steps.
+
+\*---------------------------------------------------------------------------*/
+
+#include "demCoupling.H"
+#include "OStringStream.H"
+#include <cmath>
+#include <cstdlib>
+
+namespace
+{
+    std::string hms(const Foam::scalar s)
+    {
+        const long t = long(s + 0.5);
+        char buf[32];
+        std::snprintf
+        (
+            buf, sizeof buf, "%ld:%02ld:%02ld", t/3600, (t/60) % 60, t % 60
+        );
+        return buf;
+    }
+}
+
+
+Foam::demCoupling::~demCoupling()
+{
+    std::free(snapBuf_);
+}
+
+
+void Foam::demCoupling::checkpoint()
+{
+    std::free(snapBuf_);
+    snapBuf_ = nullptr;
+    snapSize_ = 0;
+    world_.check
+    (
+        dem_world_save_memory(world_, &snapBuf_, &snapSize_),
+        "dem_world_save_memory"
+    );
+    snapLostPerPatch_ = lostPerPatch_;
+    snapLostUnknown_ = lostUnknown_;
+    snapOutIds_ = outIds_;
+    snapFDrag_ = fDrag_;
+    snapFGradP_ = fGradP_;
+    snapEtaP_ = etaP_;
+    snapFExtra_ = fExtra_;
+    snapBedEta_ = bedEta_;
+    snapVec_.setSize(3);
+    snapVec_[0] = F_.primitiveField();
+    snapVec_[1] = source_.primitiveField();
+    snapVec_[2] = Ucoup_.primitiveField();
+    snapScalar_.setSize(2);
+    snapScalar_[0] = Kc_.primitiveField();
+    snapScalar_[1] = eta_.primitiveField();
+}
+
+
+void Foam::demCoupling::restoreCheckpoint()
+{
+    if (!snapBuf_)
+    {
+        return;
+    }
+    world_.check
+    (
+        dem_world_restore_memory(world_, snapBuf_, snapSize_),
+        "dem_world_restore_memory"
+    );
+    lostPerPatch_ = snapLostPerPatch_;
+    lostUnknown_ = snapLostUnknown_;
+    outIds_ = snapOutIds_;
+    fDrag_ = snapFDrag_;
+    fGradP_ = snapFGradP_;
+    etaP_ = snapEtaP_;
+    fExtra_ = snapFExtra_;
+    bedEta_ = snapBedEta_;
+    F_.primitiveFieldRef() = snapVec_[0];
+    source_.primitiveFieldRef() = snapVec_[1];
+    Ucoup_.primitiveFieldRef() = snapVec_[2];
+    Kc_.primitiveFieldRef() = snapScalar_[0];
+    eta_.primitiveFieldRef() = snapScalar_[1];
+
+    // the checkpointed particles were all located: nothing leaves here
+    const std::string why(failure_);
+    locateAll();
+    computeWeights();
+    computeVoidage();
+    failure_ = why;
+}
+
+
+std::string Foam::demCoupling::nonFinite
+(
+    const volVectorField& U,
+    const volScalarField& p
+)
+{
+    const fvMesh& mesh = U.mesh();
+    OStringStream os;
+    forAll(U, c)
+    {
+        const vector& u = U[c];
+        if (!std::isfinite(u.x() + u.y() + u.z()))
+        {
+            os  << "non-finite fluid velocity " << U.name() << " = " << u
+                << " in cell " << c << " at " << mesh.C()[c];
+            return os.str();
+        }
+        if (!std::isfinite(p[c]))
+        {
+            os  << "non-finite pressure " << p.name() << " = " << p[c]
+                << " in cell " << c << " at " << mesh.C()[c];
+            return os.str();
+        }
+    }
+    return "";
+}
+
+
+Foam::label Foam::demCoupling::injectedStep(const word& kind)
+{
+    const char* env = std::getenv("DEMFOAM_DEBUG_INJECT");
+    if (!env) return -1;
+    const std::string s(env);
+    const std::string::size_type at = s.find('@');
+    if (at == std::string::npos || s.substr(0, at) != kind) return -1;
+    return label(std::atol(s.c_str() + at + 1));
+}
+
+
+void Foam::demCoupling::progress(const bool force)
+{
+    const scalar wall = std::chrono::duration<scalar>
+    (
+        std::chrono::steady_clock::now() - wallStart_
+    ).count();
+    const bool due =
+        force
+     || (progressSteps_ > 0 && nSteps_ % progressSteps_ == 0)
+     || (progressSteps_ == 0 && wall - wallLastProgress_ >= progressInterval_);
+    if (!due) return;
+    wallLastProgress_ = wall;
+
+    const Time& runTime = mesh_.time();
+    const scalar t = runTime.value();
+    const scalar tEnd = runTime.endTime().value();
+    const scalar done = t - startTime_;
+    const scalar eta =
+        done > 0 ? wall*max(tEnd - t, scalar(0))/done : scalar(0);
+
+    dem_stats st;
+    world_.check(dem_world_stats(world_, &st), "dem_world_stats");
+
+    const scalar total = max(tDem_ + tCoupling_ + tFluid_, VSMALL);
+    OStringStream os;
+    os  << "progress: t = " << t << " s of " << tEnd << " ("
+        << label(100*(t - startTime_)/max(tEnd - startTime_, VSMALL))
+        << " %), wall " << hms(wall).c_str() << ", to the end ~"
+        << hms(eta).c_str()
+        << ", particles " << label(dem_world_count(world_))
+        << " (inserted " << label(st.inserted) << ", removed";
+    forAll(outletPatches_, k)
+    {
+        int64_t cnt = 0;
+        double mass = 0;
+        world_.check
+        (
+            dem_world_outlet_totals(world_, outletIds_[k], &cnt, &mass),
+            "dem_world_outlet_totals"
+        );
+        os  << " " << mesh_.boundaryMesh()[outletPatches_[k]].name() << " "
+            << label(cnt);
+    }
+    if (outletPatches_.empty()) os << " 0";
+    os  << ", lost " << nLostTotal_ << ")"
+        << ", max overlap " << 100*st.max_overlap_ratio << " % of d"
+        << ", time DEM " << label(100*tDem_/total + 0.5)
+        << " % coupling " << label(100*tCoupling_/total + 0.5)
+        << " % fluid " << label(100*tFluid_/total + 0.5) << " %";
+    Info<< os.str().c_str() << endl;
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,860 @@
+/*---------------------------------------------------------------------------*\
+  demFoam
+
+Description
+    Checks of constant/demProperties before anything is built or written
+    (issue 6, docs/demProperties.md): every keyword of every scope is known
+    (else the nearest valid name is suggested), every value has the right
+    type and range, model, law, material and patch names exist.  A second
+    check, after the initial particles are placed and before the first
+    step, tests the state: particle centres inside the mesh, no overlap
+    above maxInitialOverlap, dem/timeStep below the safe fraction of the
+    contact time.  Every message names the file, the keyword, the value and
+    what is allowed.
+
+\*---------------------------------------------------------------------------*/
+
+#include "demCoupling.H"
+#include "extraForce.H"
+#include "OStringStream.H"
+#include <cmath>
+#include <unordered_map>
+
+namespace
+{
+
+using namespace Foam;
+
+enum class kind { Scalar, Label, Word, Bool, Vector, List, Dict, Distribution };
+
+struct keySpec
+{
+    word name;
+    kind type;
+    double lo, hi;          // range of Scalar / Label / Distribution values
+    bool loOpen, hiOpen;    // bound excluded
+    wordList words;         // allowed values of a Word (empty: any)
+};
+
+keySpec num(const char* n, kind t, double lo, double hi, bool loOpen, bool hiOpen)
+{
+    return keySpec{n, t, lo, hi, loOpen, hiOpen, wordList()};
+}
+
+keySpec any(const char* n, kind t)
+{
+    return keySpec{n, t, -GREAT, GREAT, false, false, wordList()};
+}
+
+keySpec choice(const char* n, const wordList& words)
+{
+    return keySpec{n, kind::Word, 0, 0, false, false, words};
+}
+
+const double inf = GREAT;
+
+
+Foam::vector toVec(const double* a, const label i)
+{
+    return Foam::vector(a[3*i], a[3*i+1], a[3*i+2]);
+}
+
+
+std::string numText(const scalar x)
+{
+    OStringStream os;
+    os << x;
+    return os.str();
+}
+
+
+//- Edit distance (insert, delete, substitute, swap of neighbours), case-blind
+label editDistance(const std::string& a, const std::string& b)
+{
+    const label n = a.size(), m = b.size();
+    List<labelList> d(n + 1, labelList(m + 1, 0));
+    for (label i = 0; i <= n; ++i) d[i][0] = i;
+    for (label j = 0; j <= m; ++j) d[0][j] = j;
+    for (label i = 1; i <= n; ++i)
+    {
+        for (label j = 1; j <= m; ++j)
+        {
+            const bool same = std::tolower(a[i-1]) == std::tolower(b[j-1]);
+            d[i][j] = min(min(d[i-1][j] + 1, d[i][j-1] + 1), d[i-1][j-1] + !same);
+            if
+            (
+                i > 1 && j > 1
+             && std::tolower(a[i-1]) == std::tolower(b[j-2])
+             && std::tolower(a[i-2]) == std::tolower(b[j-1])
+            )
+            {
+                d[i][j] = min(d[i][j], d[i-2][j-2] + 1);
+            }
+        }
+    }
+    return d[n][m];
+}
+
+
+//- " (did you mean X?)" for the closest candidate within reach, else ""
+std::string suggestion(const word& w, const wordList& candidates)
+{
+    label best = labelMax;
+    word bestName;
+    for (const word& c : candidates)
+    {
+        const label dist = editDistance(w, c);
+        if (dist < best)
+        {
+            best = dist;
+            bestName = c;
+        }
+    }
+    const label reach = max(label(2), label(w.size()/3));
+    if (best <= reach)
+    {
+        return " (did you mean " + bestName + "?)";
+    }
+    return "";
+}
+
+
+std::string listText(const wordList& names)
+{
+    std::string s;
+    forAll(names, i)
+    {
+        s += (i ? ", " : "") + names[i];
+    }
+    return s;
+}
+
+
+std::string valueText(const entry& e)
+{
+    if (e.isDict()) return "{ ... }";
+    OStringStream os;
+    const ITstream& is = e.stream();
+    forAll(is, i)
+    {
+        os << (i ? " " : "") << is[i];
+    }
+    return os.str();
+}
+
+
+std::string rangeText(const keySpec& k)
+{
+    OStringStream os;
+    const bool hasLo = k.lo > -inf, hasHi = k.hi < inf;
+    if (hasLo) os << k.lo << (k.loOpen ? " < " : " <= ");
+    os << k.name;
+    if (hasHi) os << (k.hiOpen ? " < " : " <= ") << k.hi;
+    return os.str();
+}
+
+
+bool inRange(const keySpec& k, const scalar v)
+{
+    if (!std::isfinite(v)) return false;
+    if (k.loOpen ? !(v > k.lo) : !(v >= k.lo)) return false;
+    if (k.hiOpen ? !(v < k.hi) : !(v <= k.hi)) return false;
+    return true;
+}
+
+
+class checker
+{
+    //- File as the user knows it, e.g. constant/demProperties
+    const fileName file_;
+
+public:
+
+    explicit checker(const fileName& file) : file_(file) {}
+
+    [[noreturn]] void fail
+    (
+        const dictionary& d,
+        const word& scope,
+        const std::string& key,
+        const std::string& value,
+        const std::string& what
+    ) const
+    {
+        FatalIOErrorInFunction(d)
+            << file_.c_str() << ": keyword " << scope.c_str() << key.c_str();
+        if (!value.empty())
+        {
+            FatalIOError << " value " << value.c_str();
+        }
+        FatalIOError << ": " << what.c_str() << exit(FatalIOError);
+        ::abort();
+    }
+
+    //- Unknown keywords, types, ranges and choices of one scope
+    void check
+    (
+        const dictionary& d,
+        const word& scope,
+        const List<keySpec>& specs
+    ) const
+    {
+        wordList names(specs.size());
+        forAll(specs, i) names[i] = specs[i].name;
+
+        for (const entry& e : d)
+        {
+            const word& key = e.keyword();
+            // user variables for $macros: a leading underscore
+            if (key.empty() || key[0] == '_' || key == "FoamFile") continue;
+            const label i = names.find(key);
+            if (i < 0)
+            {
+                fail
+                (
+                    d, scope, key, valueText(e),
+                    "unknown keyword" + suggestion(key, names)
+                  + ". Allowed in " + (scope.empty() ? word("the top level") : scope)
+                  + ": " + listText(names)
+                  + " (names starting with _ are free for $variables)"
+                );
+            }
+            checkValue(d, scope, e, specs[i]);
+        }
+    }
+
+    void checkValue
+    (
+        const dictionary& d,
+        const word& scope,
+        const entry& e,
+        const keySpec& k
+    ) const
+    {
+        const std::string v(valueText(e));
+        if (k.type == kind::Dict || (k.type == kind::Distribution && e.isDict()))
+        {
+            if (!e.isDict())
+            {
+                fail(d, scope, k.name, v, "expected a dictionary { ... }");
+            }
+            return;
+        }
+        if (e.isDict())
+        {
+            fail(d, scope, k.name, v, "expected a value, not a dictionary");
+        }
+        const ITstream& is = e.stream();
+        switch (k.type)
+        {
+            case kind::Scalar:
+            case kind::Distribution:
+            case kind::Label:
+            {
+                const bool isLabel = k.type == kind::Label;
+                if
+                (
+                    is.size() != 1
+                 || !(isLabel ? is[0].isLabel() : is[0].isNumber())
+                )
+                {
+                    fail
+                    (
+                        d, scope, k.name, v,
+                        isLabel ? "expected an integer" : "expected a number"
+                    );
+                }
+                const scalar x = isLabel ? scalar(is[0].labelToken()) : is[0].number();
+                if (!inRange(k, x))
+                {
+                    fail(d, scope, k.name, v, "out of range; allowed " + rangeText(k));
+                }
+                break;
+            }
+            case kind::Word:
+            {
+                if (is.size() != 1 || !is[0].isWord())
+                {
+                    fail(d, scope, k.name, v, "expected a single word");
+                }
+                const word w(is[0].wordToken());
+                if (k.words.size() && !k.words.found(w))
+                {
+                    fail
+                    (
+                        d, scope, k.name, v,
+                        "not known" + suggestion(w, k.words)
+                      + ". Allowed: " + listText(k.words)
+                    );
+                }
+                break;
+            }
+            case kind::Bool:
+            {
+                static const wordList yesNo
+                ({"true", "false", "yes", "no", "on", "off"});
+                if (is.size() != 1 || !is[0].isWord() || !yesNo.found(is[0].wordToken()))
+                {
+                    fail(d, scope, k.name, v, "allowed " + listText(yesNo));
+                }
+                break;
+            }
+            case kind::Vector:
+            {
+                bool ok = is.size() == 5 && is[0].isPunctuation()
+                    && is[0].pToken() == token::BEGIN_LIST
+                    && is[4].isPunctuation() && is[4].pToken() == token::END_LIST;
+                for (label j = 1; ok && j <= 3; ++j)
+                {
+                    ok = is[j].isNumber() && std::isfinite(is[j].number());
+                }
+                if (!ok)
+                {
+                    fail(d, scope, k.name, v, "expected a vector (x y z) of finite numbers");
+                }
+                break;
+            }
+            case kind::List:
+            {
+                const bool ok = is.size() >= 2
+                 && (
+                        (is[0].isPunctuation() && is[0].pToken() == token::BEGIN_LIST)
+                     || (is[0].isLabel() && is.size() >= 3)
+                    );
+                if (!ok)
+                {
+                    fail(d, scope, k.name, v, "expected a list ( ... )");
+                }
+                break;
+            }
+            default:
+                break;
+        }
+    }
+
+    //- Required keyword
+    void require(const dictionary& d, const word& scope, const word& key, const std::string& what) const
+    {
+        if (!d.found(key, keyType::LITERAL))
+        {
+            fail(d, scope, key, "", "missing; required: " + what);
+        }
+    }
+
+    //- A name that must be one of the given ones (materials, patches)
+    void checkName
+    (
+        const dictionary& d,
+        const word& scope,
+        const word& key,
+        const word& value,
+        const wordList& valid,
+        const std::string& what
+    ) const
+    {
+        if (!valid.found(value))
+        {
+            fail
+            (
+                d, scope, key, value,
+                "no such " + what + suggestion(value, valid)
+              + ". Allowed: " + listText(valid)
+            );
+        }
+    }
+};
+
+
+List<keySpec> materialKeys()
+{
+    return List<keySpec>
+    ({
+        num("youngsModulus", kind::Scalar, 0, inf, true, false),
+        num("poissonRatio", kind::Scalar, 0, 0.5, false, true),
+        num("stiffnessN", kind::Scalar, 0, inf, true, false),
+        num("stiffnessT", kind::Scalar, 0, inf, true, false),
+        num("friction", kind::Scalar, 0, inf, false, false),
+        num("rollingFriction", kind::Scalar, 0, inf, false, false),
+        num("restitution", kind::Scalar, 0, 1, true, false),
+        num("damping", kind::Scalar, 0, inf, false, false)
+    });
+}
+
+
+//- diameter / density: a positive number or a distribution dictionary
+void checkDistribution
+(
+    const checker& chk,
+    const dictionary& parent,
+    const word& scope,
+    const word& key
+)
+{
+    const entry* ep = parent.findEntry(key, keyType::LITERAL);
+    if (!ep)
+    {
+        chk.require(parent, scope, key, "a number or a distribution { type ...; }");
+    }
+    if (!ep->isDict()) return;      // the number was checked (> 0) already
+
+    const dictionary& d = ep->dict();
+    const word sc(scope + key + "/");
+    const wordList types({"fixed", "uniform", "normal", "discrete"});
+    chk.require(d, sc, "type", listText(types));
+    chk.checkValue(d, sc, *d.findEntry("type", keyType::LITERAL), choice("type", types));
+    const word type(d.get<word>("type"));
+    const keySpec positive = num("", kind::Scalar, 0, inf, true, false);
+    auto pos = [&](const char* n)
+    {
+        keySpec k(positive);
+        k.name = n;
+        return k;
+    };
+    List<keySpec> keys({choice("type", types)});
+    if (type == "fixed") keys.append(pos("value"));
+    if (type == "uniform") { keys.append(pos("min")); keys.append(pos("max")); }
+    if (type == "normal")
+    {
+        keys.append(pos("mean"));
+        keys.append(num("stdDev", kind::Scalar, 0, inf, false, false));
+    }
+    if (type == "discrete")
+    {
+        keys.append(any("values", kind::List));
+        keys.append(any("weights", kind::List));
+    }
+    chk.check(d, sc, keys);
+    for (const keySpec& k : keys)
+    {
+        chk.require(d, sc, k.name, "for type " + type);
+    }
+    if (type == "uniform" && d.get<scalar>("max") < d.get<scalar>("min"))
+    {
+        chk.fail(d, sc, "max", numText(d.get<scalar>("max")),
+                 "below min " + numText(d.get<scalar>("min")) + "; allowed max >= min");
+    }
+    if (type == "normal" && d.get<scalar>("mean") - 3*d.get<scalar>("stdDev") <= 0)
+    {
+        chk.fail(d, sc, "stdDev", numText(d.get<scalar>("stdDev")),
+                 "mean - 3 stdDev must stay > 0 (the normal distribution is truncated at 3 stdDev)");
+    }
+    if (type == "discrete")
+    {
+        const scalarField vals(d.get<scalarField>("values"));
+        const scalarField wts(d.get<scalarField>("weights"));
+        if (vals.empty() || vals.size() != wts.size())
+        {
+            chk.fail(d, sc, "weights", std::to_string(wts.size()) + " entries",
+                     "values (" + std::to_string(vals.size())
+                   + " entries) and weights need the same non-zero length");
+        }
+        if (min(vals) <= 0 || min(wts) < 0 || sum(wts) <= 0)
+        {
+            chk.fail(d, sc, "values", "", "allowed values > 0, weights >= 0 with a positive sum");
+        }
+    }
+}
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * * Checks * * * * * * * * * * * * * * * * //
+
+bool Foam::demCoupling::checkDictionary
+(
+    const dictionary& dict,
+    const fileName& file,
+    const fvMesh& mesh
+)
+{
+    const checker chk(file);
+    const wordList patches(mesh.boundaryMesh().names());
+
+    const wordList formulations
+    (
+        couplingFormulation::dictionaryConstructorTablePtr_->sortedToc()
+    );
+    const wordList drags(dragModel::dictionaryConstructorTablePtr_->sortedToc());
+    const wordList voidages
+    (
+        voidageModel::dictionaryConstructorTablePtr_->sortedToc()
+    );
+    const wordList forces(extraForce::dictionaryConstructorTablePtr_->sortedToc());
+
+    List<keySpec> top
+    ({
+        choice("formulation", formulations),
+        choice("dragModel", drags),
+        choice("dragScheme", wordList({"perParticle", "cellMean"})),
+        choice("voidageModel", voidages),
+        num("epsMin", kind::Scalar, 0, 1, true, true),
+        num("etaWarning", kind::Scalar, 0, inf, false, false),
+        any("frozen", kind::Bool),
+        num("maxWalkSteps", kind::Label, 1, inf, false, false),
+        any("extraForces", kind::List),
+        any("periodicDriving", kind::Dict),
+        any("fluidInletPatches", kind::List),
+        any("outletPatches", kind::List),
+        any("wallPatches", kind::List),
+        any("wallMaterial", kind::Word),
+        num("settlingTime", kind::Scalar, 0, inf, false, false),
+        any("dem", kind::Dict),
+        any("materials", kind::Dict),
+        any("materialPairs", kind::Dict),
+        any("initialParticles", kind::Dict),
+        any("inlets", kind::Dict),
+        num("progressInterval", kind::Scalar, 0, inf, false, false),
+        num("progressSteps", kind::Label, 0, inf, false, false),
+        num("maxLostParticles", kind::Label, 0, inf, false, false),
+        num("maxInitialOverlap", kind::Scalar, 0, 1, false, true)
+    });
+    // coefficient dictionaries of every model (only the selected one is used)
+    for (const wordList* models : {&drags, &voidages, &forces})
+    {
+        for (const word& m : *models)
+        {
+            top.append(keySpec{m + "Coeffs", kind::Dict, 0, 0, false, false, wordList()});
+        }
+    }
+    chk.check(dict, "", top);
+    chk.require(dict, "", "formulation", listText(formulations));
+    chk.require(dict, "", "dragModel", listText(drags));
+    chk.require(dict, "", "dem", "dem { timeStep ...; }");
+    chk.require(dict, "", "materials", "materials { name { ... } }");
+    chk.require(dict, "", "wallMaterial", "a name from materials");
+
+    // model coefficients
+    const List<std::pair<word, List<keySpec>>> coeffs
+    ({
+        {"GidaspowCoeffs", List<keySpec>({
+            num("epsSwitch", kind::Scalar, 0, 1, true, true),
+            num("WenYuExponent", kind::Scalar, 0, inf, false, false)})},
+        {"SchillerNaumannCoeffs", List<keySpec>({
+            num("voidageExponent", kind::Scalar, -inf, inf, false, false)})},
+        {"DiFeliceCoeffs", List<keySpec>()},
+        {"BeetstraCoeffs", List<keySpec>()},
+        {"centreCoeffs", List<keySpec>()},
+        {"dividedCoeffs", List<keySpec>({
+            num("nLattice", kind::Label, 2, 12, false, false)})},
+        {"smoothedCoeffs", List<keySpec>({
+            num("nLayers", kind::Label, 0, 10, false, false),
+            num("bandwidthFactor", kind::Scalar, 0, inf, true, false)})},
+        {"virtualMassCoeffs", List<keySpec>({
+            num("Cvm", kind::Scalar, 0, inf, false, false)})},
+        {"SaffmanLiftCoeffs", List<keySpec>({
+            choice("correction", wordList({"none", "Mei"}))})},
+        {"MagnusLiftCoeffs", List<keySpec>({
+            choice("lift", wordList({"RubinowKeller", "OesterleBuiDinh"}))})}
+    });
+    for (const auto& c : coeffs)
+    {
+        if (dict.isDict(c.first))
+        {
+            chk.check(dict.subDict(c.first), c.first + "/", c.second);
+        }
+    }
+
+    for (const word& f : dict.getOrDefault<wordList>("extraForces", wordList()))
+    {
+        chk.checkName(dict, "", "extraForces", f, forces, "force");
+    }
+    for (const char* key : {"fluidInletPatches", "outletPatches", "wallPatches"})
+    {
+        for (const word& p : dict.getOrDefault<wordList>(key, wordList()))
+        {
+            chk.checkName(dict, "", key, p, patches, "patch in the mesh");
+        }
+    }
+
+    if (dict.isDict("periodicDriving"))
+    {
+        const dictionary& d = dict.subDict("periodicDriving");
+        chk.check(d, "periodicDriving/", List<keySpec>({
+            any("superficialVelocity", kind::Vector),
+            num("relaxation", kind::Scalar, 0, 1, true, false),
+            any("initialGradient", kind::Vector)}));
+        chk.require(d, "periodicDriving/", "superficialVelocity", "a vector (x y z)");
+    }
+
+    // dem { }
+    const dictionary& dem = dict.subDict("dem");
+    wordList laws;
+    for (int l = 0; l < DEM_CONTACT_LAW_COUNT; ++l)
+    {
+        const char* nm = dem_contact_law_name(dem_contact_law(l));
+        if (nm) laws.append(word(nm));
+    }
+    chk.check(dem, "dem/", List<keySpec>({
+        choice("contactLaw", laws),
+        num("timeStep", kind::Scalar, 0, inf, true, false),
+        num("dragUpdateInterval", kind::Label, 0, inf, false, false),
+        num("maxDtFraction", kind::Scalar, 0, 1, true, false),
+        num("maxOverlapRatio", kind::Scalar, 0, 1, true, true),
+        num("skin", kind::Scalar, 0, inf, false, false),
+        num("domainMargin", kind::Scalar, 0, inf, false, false),
+        num("seed", kind::Label, 0, inf, false, false),
+        num("impactSpeed", kind::Scalar, 0, inf, false, false)}));
+    chk.require(dem, "dem/", "timeStep", "the DEM time step [s] > 0");
+
+    // materials
+    const dictionary& mats = dict.subDict("materials");
+    wordList materialNames;
+    for (const entry& e : mats)
+    {
+        if (!e.isDict())
+        {
+            chk.fail(mats, "materials/", e.keyword(), valueText(e),
+                     "expected a material dictionary name { youngsModulus ...; }");
+        }
+        const word sc("materials/" + e.keyword() + "/");
+        chk.check(e.dict(), sc, materialKeys());
+        if (!e.dict().found("restitution") && !e.dict().found("damping"))
+        {
+            chk.fail(e.dict(), sc, "restitution", "",
+                     "missing; give restitution (0 < e <= 1) or damping (>= 0)");
+        }
+        materialNames.append(e.keyword());
+    }
+    if (materialNames.empty())
+    {
+        chk.fail(mats, "", "materials", "{ }", "no material given; give at least one");
+    }
+    chk.checkName
+    (
+        dict, "", "wallMaterial", dict.get<word>("wallMaterial"),
+        materialNames, "material"
+    );
+
+    if (dict.isDict("materialPairs"))
+    {
+        List<keySpec> keys(materialKeys());
+        keys.append(any("materials", kind::List));
+        for (const entry& e : dict.subDict("materialPairs"))
+        {
+            const word sc("materialPairs/" + e.keyword() + "/");
+            if (!e.isDict())
+            {
+                chk.fail(dict.subDict("materialPairs"), "materialPairs/",
+                         e.keyword(), valueText(e), "expected a dictionary");
+            }
+            chk.check(e.dict(), sc, keys);
+            chk.require(e.dict(), sc, "materials", "two names from materials");
+            const wordList names(e.dict().get<wordList>("materials"));
+            if (names.size() != 2)
+            {
+                chk.fail(e.dict(), sc, "materials", listText(names),
+                         "give two material names");
+            }
+            for (const word& n : names)
+            {
+                chk.checkName(e.dict(), sc, "materials", n, materialNames, "material");
+            }
+        }
+    }
+
+    // initialParticles and inlets
+    const keySpec positive = num("", kind::Distribution, 0, inf, true, false);
+    auto dist = [&](const char* n)
+    {
+        keySpec k(positive);
+        k.name = n;
+        return k;
+    };
+    if (dict.isDict("initialParticles"))
+    {
+        const dictionary& all = dict.subDict("initialParticles");
+        for (const entry& e : all)
+        {
+            const word sc("initialParticles/" + e.keyword() + "/");
+            if (!e.isDict())
+            {
+                chk.fail(all, "initialParticles/", e.keyword(), valueText(e),
+                         "expected a dictionary name { type box; ... }");
+            }
+            const dictionary& d = e.dict();
+            const wordList types({"box", "list"});
+            chk.require(d, sc, "type", listText(types));
+            chk.check(d, sc, List<keySpec>({choice("type", types)
+                , any("min", kind::Vector), any("max", kind::Vector)
+                , num("number", kind::Label, 1, inf, false, false)
+                , any("positions", kind::List)
+                , dist("diameter"), dist("density")
+                , any("material", kind::Word), any("velocity", kind::Vector)
+                , any("angularVelocity", kind::Vector)}));
+            const word type(d.get<word>("type"));
+            const wordList need
+            (
+                type == "box"
+              ? wordList({"min", "max", "number", "diameter", "density", "material"})
+              : wordList({"positions", "diameter", "density", "material"})
+            );
+            for (const word& k : need)
+            {
+                chk.require(d, sc, k, "for type " + type);
+            }
+            if (type == "box")
+            {
+                checkDistribution(chk, d, sc, "diameter");
+                checkDistribution(chk, d, sc, "density");
+                const vector lo(d.get<vector>("min")), hi(d.get<vector>("max"));
+                if (lo.x() >= hi.x() || lo.y() >= hi.y() || lo.z() >= hi.z())
+                {
+                    OStringStream os;
+                    os << hi;
+                    chk.fail(d, sc, "max", os.str(), "allowed max > min in every component");
+                }
+            }
+            else
+            {
+                for (const char* k : {"diameter", "density", "angularVelocity"})
+                {
+                    if (d.isDict(k))
+                    {
+                        chk.fail(d, sc, k, "{ ... }", "type list takes a number, not a distribution");
+                    }
+                }
+                for (const vector& x : d.get<List<vector>>("positions"))
+                {
+                    if (!std::isfinite(x.x() + x.y() + x.z()))
+                    {
+                        chk.fail(d, sc, "positions", "", "contains a non-finite position");
+                    }
+                }
+            }
+            chk.checkName(d, sc, "material", d.get<word>("material"), materialNames, "material");
+        }
+    }
+    if (dict.isDict("inlets"))
+    {
+        const dictionary& all = dict.subDict("inlets");
+        for (const entry& e : all)
+        {
+            const word sc("inlets/" + e.keyword() + "/");
+            if (!e.isDict())
+            {
+                chk.fail(all, "inlets/", e.keyword(), valueText(e),
+                         "expected a dictionary name { patch ...; }");
+            }
+            const dictionary& d = e.dict();
+            chk.check(d, sc, List<keySpec>({any("patch", kind::Word)
+                , choice("rateType", wordList({"number", "mass"}))
+                , num("rate", kind::Scalar, 0, inf, false, false)
+                , num("start", kind::Scalar, 0, inf, false, false)
+                , num("end", kind::Scalar, 0, inf, false, false)
+                , dist("diameter"), dist("density")
+                , any("material", kind::Word), any("velocity", kind::Vector)}));
+            for (const char* k : {"patch", "rate", "diameter", "density", "material"})
+            {
+                chk.require(d, sc, k, "for an inlet");
+            }
+            checkDistribution(chk, d, sc, "diameter");
+            checkDistribution(chk, d, sc, "density");
+            chk.checkName(d, sc, "patch", d.get<word>("patch"), patches, "patch in the mesh");
+            chk.checkName(d, sc, "material", d.get<word>("material"), materialNames, "material");
+        }
+    }
+
+    return true;
+}
+
+
+void Foam::demCoupling::checkInitialState()
+{
+    const checker chk(dict_.instance()/dict_.name());
+    dem_arrays a = world_.arrays();
+    const label n = label(a.n_owned);
+
+    // centres inside the mesh
+    label nOut = 0, firstOut = -1;
+    for (label i = 0; i < n; ++i)
+    {
+        if (mesh_.findCell(toVec(a.x, i), polyMesh::FACE_DIAG_TRIS) < 0)
+        {
+            if (firstOut < 0) firstOut = i;
+            ++nOut;
+        }
+    }
+    if (nOut)
+    {
+        OStringStream os;
+        os << toVec(a.x, firstOut);
+        chk.fail
+        (
+            dict_.subDict("initialParticles"), "", "initialParticles",
+            "", std::to_string(nOut) + " of " + std::to_string(n)
+          + " initial particles have their centre outside the mesh (the"
+            " first: id " + std::to_string(label(a.id[firstOut])) + " at "
+          + os.str() + "); allowed: every centre inside the mesh"
+        );
+    }
+
+    if (frozen_ || n == 0) return;
+
+    // overlaps between particles: cell list with the largest diameter
+    const scalar limit = dict_.getOrDefault<scalar>("maxInitialOverlap", 0.05);
+    scalar dMax = 0;
+    for (label i = 0; i < n; ++i) dMax = max(dMax, 2*a.radius[i]);
+    std::unordered_map<int64_t, DynamicList<label>> cells;
+    auto key = [&](const label i, const int dx, const int dy, const int dz)
+    {
+        const int64_t cx = int64_t(std::floor(a.x[3*i]/dMax)) + dx;
+        const int64_t cy = int64_t(std::floor(a.x[3*i+1]/dMax)) + dy;
+        const int64_t cz = int64_t(std::floor(a.x[3*i+2]/dMax)) + dz;
+        return (cx*73856093) ^ (cy*19349663) ^ (cz*83492791);
+    };
+    for (label i = 0; i < n; ++i) cells[key(i, 0, 0, 0)].append(i);
+    scalar worst = 0;
+    label wi = -1, wj = -1;
+    for (label i = 0; i < n; ++i)
+    {
+        for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz)
+        {
+            const auto it = cells.find(key(i, dx, dy, dz));
+            if (it == cells.end()) continue;
+            for (const label j : it->second)
+            {
+                if (j <= i) continue;
+                const scalar dist = mag(toVec(a.x, i) - toVec(a.x, j));
+                const scalar ov =
+                    (a.radius[i] + a.radius[j] - dist)
+                   /(2*min(a.radius[i], a.radius[j]));
+                if (ov > worst)
+                {
+                    worst = ov;
+                    wi = i;
+                    wj = j;
+                }
+            }
+        }
+    }
+    if (worst > limit)
+    {
+        OStringStream os;
+        os  << "particles " << label(a.id[wi]) << " at " << toVec(a.x, wi)
+            << " and " << label(a.id[wj]) << " at " << toVec(a.x, wj)
+            << " overlap by " << worst << " of the smaller diameter; allowed"
+            << " overlap <= maxInitialOverlap " << limit
+            << " (move them apart, or raise maxInitialOverlap)";
+        chk.fail(dict_, "", "initialParticles", "", os.str());
+    }
+
+    // the DEM time step against the contact time
+    double dtMax = 0;
+    world_.check(dem_world_max_dt(world_, &dtMax), "dem_world_max_dt");
+    if (demDt_ > dtMax)
+    {
+        const dictionary& demDict = dict_.subDict("dem");
+        OStringStream os;
+        os  << "above the safe fraction maxDtFraction of the contact time;"
+            << " allowed timeStep <= " << dtMax << " s for these particles"
+            << " and materials (lower timeStep, or a softer youngsModulus"
+            << " / stiffnessN: the contact time grows as E^(-2/5) for Hertz"
+            << " and k^(-1/2) for linear springs)";
+        chk.fail(demDict, "dem/", "timeStep", numText(demDt_), os.str());
+    }
+}
+
+
+// ************************************************************************* //
