@@ -96,6 +96,7 @@ Foam::demCoupling::demCoupling
 )
 :
     mesh_(mesh),
+    readTraps_(),
     dict_
     (
         IOobject
@@ -167,6 +168,7 @@ Foam::demCoupling::demCoupling
     tauCoeff_(fieldIO(mesh, "viscousCoeff", false), mesh,
             dimensionedScalar("one", dimless, 1.0), "zeroGradient")
 {
+    readTraps_.release();
     failure_.clear();
     maxLost_ = dict_.getOrDefault<label>("maxLostParticles", 0);
     nLostTotal_ = 0;

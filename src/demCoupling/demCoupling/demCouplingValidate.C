@@ -43,7 +43,7 @@ keySpec num(const char* n, kind t, double lo, double hi, bool loOpen, bool hiOpe
 
 keySpec any(const char* n, kind t)
 {
-    return keySpec{n, t, -GREAT, GREAT, false, false, wordList()};
+    return keySpec{n, t, -HUGE_VAL, HUGE_VAL, false, false, wordList()};
 }
 
 keySpec choice(const char* n, const wordList& words)
@@ -51,7 +51,7 @@ keySpec choice(const char* n, const wordList& words)
     return keySpec{n, kind::Word, 0, 0, false, false, words};
 }
 
-const double inf = GREAT;
+const double inf = HUGE_VAL;
 
 
 Foam::vector toVec(const double* a, const label i)
