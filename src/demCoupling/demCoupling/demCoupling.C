@@ -121,7 +121,7 @@ Foam::demCoupling::demCoupling
     voidage_(voidageModel::New(dict_, mesh, locator_)),
     extraForces_(extraForce::NewList(dict_)),
     Uprev_(),
-    tUprev_(-GREAT),
+    indexUprev_(-2),
     cellMeanDrag_(false),
     frozen_(dict_.getOrDefault<bool>("frozen", false)),
     epsMin_(dict_.getOrDefault<scalar>("epsMin", 0.1)),
@@ -176,6 +176,8 @@ Foam::demCoupling::demCoupling
     snapSize_ = 0;
     snapLostUnknown_ = 0;
     snapBedEta_ = 0;
+    snapIndexUprev_ = -2;
+    snapG_ = Zero;
     wallStart_ = std::chrono::steady_clock::now();
     wallLastProgress_ = 0;
     tDem_ = tCoupling_ = tFluid_ = 0;
@@ -254,6 +256,11 @@ Foam::demCoupling::demCoupling
             dem_world_restore(world_, state.c_str()),
             "dem_world_restore"
         );
+        const fileName cpl(state.path()/"demCouplingState.bin");
+        if (isFile(cpl))
+        {
+            readCouplingState(cpl);
+        }
     }
     else
     {
@@ -1454,15 +1461,18 @@ void Foam::demCoupling::extraForceFields
     }
     if (needA)
     {
-        // Du/Dt = du/dt + (u.grad)u; du/dt from U of this and the last call
+        // Du/Dt = du/dt + (u.grad)u; du/dt from U of this and the last
+        // step (U is the field of the end of the previous step; Uprev_ the
+        // one of the step before, kept with its time index; the step
+        // between them is deltaT0, which a restart reads back exactly)
         DuDt = (U & fvc::grad(U))().primitiveField();
-        const scalar tU = mesh_.time().value() - mesh_.time().deltaTValue();
-        if (Uprev_.size() == mesh_.nCells() && tU > tUprev_)
+        const label index = mesh_.time().timeIndex();
+        if (Uprev_.size() == mesh_.nCells() && index == indexUprev_ + 1)
         {
-            DuDt += (U.primitiveField() - Uprev_)/(tU - tUprev_);
+            DuDt += (U.primitiveField() - Uprev_)/mesh_.time().deltaT0Value();
         }
         Uprev_ = U.primitiveField();
-        tUprev_ = tU;
+        indexUprev_ = index;
     }
 }
 

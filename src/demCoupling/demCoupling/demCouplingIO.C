@@ -1,4 +1,5 @@
 #include "demCoupling.H"
+#include <fstream>
 #include "passiveParticleCloud.H"
 #include "IOField.H"
 #include "Map.H"
@@ -159,4 +160,65 @@ void Foam::demCoupling::write() const
     mkDir(dir);
     const fileName state(dir/"demState.bin");
     world_.check(dem_world_save(world_, state.c_str()), "dem_world_save");
+    writeCouplingState(dir/"demCouplingState.bin");
+}
+
+
+// The coupling's own history for an exact restart: the fluid velocity of
+// the last step (du/dt of the extra forces) and the periodic driving
+// gradient G.  Binary, native: "DEMCPL2\0", nCells, time index of Uprev,
+// G, Uprev.
+void Foam::demCoupling::writeCouplingState(const fileName& file) const
+{
+    std::ofstream os(file.c_str(), std::ios::binary);
+    const char magic[8] = {'D', 'E', 'M', 'C', 'P', 'L', '2', '\0'};
+    const int64_t n = Uprev_.size();
+    os.write(magic, sizeof magic);
+    os.write(reinterpret_cast<const char*>(&n), sizeof n);
+    const int64_t index = indexUprev_;
+    os.write(reinterpret_cast<const char*>(&index), sizeof index);
+    os.write(reinterpret_cast<const char*>(G_.cdata()), 3*sizeof(scalar));
+    if (n)
+    {
+        os.write(reinterpret_cast<const char*>(Uprev_.cdata()), 3*n*sizeof(scalar));
+    }
+    if (!os.good())
+    {
+        FatalErrorInFunction
+            << "cannot write " << file << exit(FatalError);
+    }
+}
+
+
+void Foam::demCoupling::readCouplingState(const fileName& file)
+{
+    std::ifstream is(file.c_str(), std::ios::binary);
+    char magic[8];
+    int64_t n = -1;
+    is.read(magic, sizeof magic);
+    is.read(reinterpret_cast<char*>(&n), sizeof n);
+    if
+    (
+        !is.good() || std::string(magic, 7) != "DEMCPL2"
+     || (n != 0 && n != mesh_.nCells())
+    )
+    {
+        FatalErrorInFunction
+            << file << " is not a demFoam coupling state for this mesh ("
+            << mesh_.nCells() << " cells)" << exit(FatalError);
+    }
+    int64_t index = -2;
+    is.read(reinterpret_cast<char*>(&index), sizeof index);
+    indexUprev_ = label(index);
+    is.read(reinterpret_cast<char*>(G_.data()), 3*sizeof(scalar));
+    Uprev_.setSize(n);
+    if (n)
+    {
+        is.read(reinterpret_cast<char*>(Uprev_.data()), 3*n*sizeof(scalar));
+    }
+    if (!is.good())
+    {
+        FatalErrorInFunction
+            << file << " is truncated" << exit(FatalError);
+    }
 }

@@ -41,6 +41,7 @@ Foam::demCoupling::~demCoupling()
 
 void Foam::demCoupling::checkpoint()
 {
+    const auto t0 = std::chrono::steady_clock::now();
     std::free(snapBuf_);
     snapBuf_ = nullptr;
     snapSize_ = 0;
@@ -57,6 +58,9 @@ void Foam::demCoupling::checkpoint()
     snapEtaP_ = etaP_;
     snapFExtra_ = fExtra_;
     snapBedEta_ = bedEta_;
+    snapUprev_ = Uprev_;
+    snapIndexUprev_ = indexUprev_;
+    snapG_ = G_;
     snapVec_.setSize(3);
     snapVec_[0] = F_.primitiveField();
     snapVec_[1] = source_.primitiveField();
@@ -64,6 +68,10 @@ void Foam::demCoupling::checkpoint()
     snapScalar_.setSize(2);
     snapScalar_[0] = Kc_.primitiveField();
     snapScalar_[1] = eta_.primitiveField();
+    tCoupling_ += std::chrono::duration<scalar>
+    (
+        std::chrono::steady_clock::now() - t0
+    ).count();
 }
 
 
@@ -86,6 +94,9 @@ void Foam::demCoupling::restoreCheckpoint()
     etaP_ = snapEtaP_;
     fExtra_ = snapFExtra_;
     bedEta_ = snapBedEta_;
+    Uprev_ = snapUprev_;
+    indexUprev_ = snapIndexUprev_;
+    G_ = snapG_;
     F_.primitiveFieldRef() = snapVec_[0];
     source_.primitiveFieldRef() = snapVec_[1];
     Ucoup_.primitiveFieldRef() = snapVec_[2];
