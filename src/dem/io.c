@@ -128,10 +128,28 @@ dem_status dem_world_save(const dem_world *w, const char *path)
     return DEM_OK;
 }
 
-dem_status dem_world_save_memory(const dem_world *w, void **buf, size_t *size)
+dem_status dem_world_save_memory(const dem_world *w, void **buf, size_t *capacity, size_t *size)
 {
     if (!w) return DEM_ERR_ARG;
-    if (!buf || !size) return DEM_FAIL(w, DEM_ERR_ARG, "save_memory: buf and size must not be NULL");
+    if (!buf || !capacity || !size)
+        return DEM_FAIL(w, DEM_ERR_ARG, "save_memory: buf, capacity and size must not be NULL");
+    /* into the caller's buffer when it is large enough (no allocation,
+       no fresh pages: the per-step checkpoint of demFoam) */
+    if (*buf && *capacity > 0) {
+        FILE *f = fmemopen(*buf, *capacity, "wb");
+        if (f) {
+            setvbuf(f, NULL, _IONBF, 0);
+            wio o = {f, 0};
+            save_world(&o, w);
+            long used = ftell(f);
+            if (fclose(f) != 0) o.bad = 1;
+            if (!o.bad && used >= 0 && (size_t)used < *capacity) {
+                *size = (size_t)used;
+                return DEM_OK;
+            }
+        }
+    }
+    /* first call or grown state: a new buffer with 1/8 slack */
     char *p = NULL;
     size_t n = 0;
     FILE *f = open_memstream(&p, &n);
@@ -140,7 +158,12 @@ dem_status dem_world_save_memory(const dem_world *w, void **buf, size_t *size)
     save_world(&o, w);
     if (fclose(f) != 0) o.bad = 1;
     if (o.bad) { free(p); return DEM_FAIL(w, DEM_ERR_NOMEM, "save_memory: out of memory"); }
-    *buf = p;
+    size_t cap = n + n / 8 + 64;
+    char *q = realloc(p, cap);
+    if (!q) { free(p); return DEM_FAIL(w, DEM_ERR_NOMEM, "save_memory: out of memory (%zu bytes)", cap); }
+    free(*buf);
+    *buf = q;
+    *capacity = cap;
     *size = n;
     return DEM_OK;
 }

@@ -111,8 +111,17 @@ int main(void)
         dem_world *m = setup();
         TRY(m, dem_world_step(m, n1));
         void *snap = NULL;
-        size_t snapSize = 0;
-        TRY(m, dem_world_save_memory(m, &snap, &snapSize));
+        size_t snapSize = 0, snapCap = 0;
+        TRY(m, dem_world_save_memory(m, &snap, &snapCap, &snapSize));
+        /* a second save reuses the buffer and gives the same bytes */
+        void *first = malloc(snapSize);
+        memcpy(first, snap, snapSize);
+        void *before = snap;
+        size_t size2 = 0;
+        TRY(m, dem_world_save_memory(m, &snap, &snapCap, &size2));
+        check_abs("checkpoint: second save into the same buffer", (double)(snap == before), 1.0, 0.0);
+        check_abs("checkpoint: second save same bytes", (double)(size2 == snapSize && !memcmp(first, snap, snapSize)), 1.0, 0.0);
+        free(first);
         TRY(m, dem_world_step(m, n2 / 2));
         const size_t nBefore = dem_world_count(m);
         const double tBefore = dem_world_time(m);

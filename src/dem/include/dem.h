@@ -272,9 +272,12 @@ dem_status dem_world_particle_contacts(const dem_world *w, int *coordination, do
  *  restored world continues bit-identically. */
 dem_status dem_world_save(const dem_world *w, const char *path);
 dem_status dem_world_restore(dem_world *w, const char *path);
-/** The same state in memory (e.g. a last-good-state checkpoint): *buf is
- *  malloc'ed, release it with free(); restore leaves w unchanged on error. */
-dem_status dem_world_save_memory(const dem_world *w, void **buf, size_t *size);
+/** The same state in memory (e.g. a last-good-state checkpoint).  *buf
+ *  (NULL or malloc'ed, *capacity bytes) is reused when the state fits,
+ *  else replaced by a larger malloc'ed buffer; *size gets the state's
+ *  bytes.  Release the buffer with free().  restore leaves w unchanged on
+ *  error. */
+dem_status dem_world_save_memory(const dem_world *w, void **buf, size_t *capacity, size_t *size);
 dem_status dem_world_restore_memory(dem_world *w, const void *buf, size_t size);
 
 /*--- decomposition support --------------------------------------------------------*/

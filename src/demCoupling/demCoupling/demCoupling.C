@@ -174,6 +174,7 @@ Foam::demCoupling::demCoupling
     nLostTotal_ = 0;
     snapBuf_ = nullptr;
     snapSize_ = 0;
+    snapCapacity_ = 0;
     snapLostUnknown_ = 0;
     snapBedEta_ = 0;
     snapIndexUprev_ = -2;

@@ -42,12 +42,9 @@ Foam::demCoupling::~demCoupling()
 void Foam::demCoupling::checkpoint()
 {
     const auto t0 = std::chrono::steady_clock::now();
-    std::free(snapBuf_);
-    snapBuf_ = nullptr;
-    snapSize_ = 0;
     world_.check
     (
-        dem_world_save_memory(world_, &snapBuf_, &snapSize_),
+        dem_world_save_memory(world_, &snapBuf_, &snapCapacity_, &snapSize_),
         "dem_world_save_memory"
     );
     snapLostPerPatch_ = lostPerPatch_;
