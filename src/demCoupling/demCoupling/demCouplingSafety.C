@@ -193,7 +193,8 @@ void Foam::demCoupling::progress(const bool force)
     }
     if (outletPatches_.empty()) os << " 0";
     os  << ", lost " << nLostTotal_ << ")"
-        << ", max overlap " << 100*st.max_overlap_ratio << " % of d"
+        << ", max overlap " << 0.001*std::round(1e5*st.max_overlap_ratio)
+        << " % of d"
         << ", time DEM " << label(100*tDem_/total + 0.5)
         << " % coupling " << label(100*tCoupling_/total + 0.5)
         << " % fluid " << label(100*tFluid_/total + 0.5) << " %";
