@@ -153,12 +153,24 @@ dem_status dem_world_set_wall_velocity(dem_world *w, int wall_id, const double v
     double v[3];
     dem_status s = check_vel(w, velocity, v, "set_wall_velocity");
     if (s) return s;
+    /* the wall moves to its current position, which must be representable */
     if (w->wall_kind[wall_id] == 0) {
         dem_plane *P = &w->planes[w->wall_index[wall_id]];
+        for (int k = 0; k < 3; ++k)
+            if (!isfinite(P->x0[k] + P->vel[k] * (w->time - P->t0)))
+                return DEM_FAIL(w, DEM_ERR_RANGE, "set_wall_velocity: wall %d has moved out of the range of "
+                                "doubles (point[%d] = %g + %g x %g s)", wall_id, k, P->x0[k], P->vel[k],
+                                w->time - P->t0);
         for (int k = 0; k < 3; ++k) { P->x0[k] += P->vel[k] * (w->time - P->t0); P->vel[k] = v[k]; }
         P->t0 = w->time;
     } else {
         dem_mesh *M = &w->meshes[w->wall_index[wall_id]];
+        for (size_t i = 0; i < M->nv; ++i)
+            for (int k = 0; k < 3; ++k)
+                if (!isfinite(M->v0[3 * i + k] + M->vel[k] * (w->time - M->t0)))
+                    return DEM_FAIL(w, DEM_ERR_RANGE, "set_wall_velocity: wall %d has moved out of the range of "
+                                    "doubles (vertex %zu coordinate %d = %g + %g x %g s)", wall_id, i, k,
+                                    M->v0[3 * i + k], M->vel[k], w->time - M->t0);
         for (size_t i = 0; i < M->nv; ++i)
             for (int k = 0; k < 3; ++k) M->v0[3 * i + k] += M->vel[k] * (w->time - M->t0);
         for (int k = 0; k < 3; ++k) M->vel[k] = v[k];
