@@ -19,6 +19,12 @@ dem_status dem_fail_(const dem_world *w, dem_status code, const char *file, int 
 #endif
     ;
 #define DEM_FAIL(w, code, ...) dem_fail_((w), (code), __FILE__, __LINE__, __VA_ARGS__)
+/* A required pointer argument: DEM_ERR_ARG naming the function and argument. */
+#define DEM_NEED(w, ptr, fn) do { if (!(ptr)) return DEM_FAIL((w), DEM_ERR_ARG, \
+    "%s: %s is NULL; a valid pointer is required", (fn), #ptr); } while (0)
+/* Particle storage uses int indices (neighbour list, cells): owned + ghost
+ * particles of a world are limited to this. */
+#define DEM_MAX_PARTICLES 2147483647
 void dem_log_(const dem_world *w, dem_log_level lvl, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
@@ -223,6 +229,13 @@ dem_status dem_scratch_ensure(dem_world *w);
 #define DEM_SCRATCH_EXTRA 80  /* entries beyond the longest row (block of the phased loop) */
 void       dem_forces(dem_world *w, double hist_dt);
 dem_status dem_append_particle(dem_world *w, const dem_particle *p);
+dem_status dem_particle_check(dem_world *w, const dem_particle *p, const char *what);
+dem_status dem_room_for(dem_world *w, size_t n, const char *what);
+int        dem_mass_ok(double radius, double density);
+int        dem_inertia_ok(double mass, double radius);
+dem_status dem_inlet_check(dem_world *w, const dem_inlet *in, const char *what);
+dem_status dem_config_check(dem_world *w, const dem_config *c);
+dem_status dem_material_check(dem_world *w, const dem_material *m, const char *what, int law_check);
 void       dem_remove_index(dem_world *w, size_t i);
 dem_status dem_inlets_run(dem_world *w);
 dem_status dem_outlets_run(dem_world *w);

@@ -9,61 +9,79 @@
 \*---------------------------------------------------------------------------*/
 #include "dem_private.h"
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define DEM_FILL_TRIES 1000   /* attempts per particle before giving up */
 #define DEM_INLET_TRIES 20    /* attempts per inlet particle per step */
 
-static dem_status check_dist(dem_world *w, const dem_distribution *d, const char *what, double *dmax)
+/* Checks a distribution; *dmin, *dmax: the smallest and largest value it can draw. */
+static dem_status check_dist(dem_world *w, const dem_distribution *d, const char *what, double *dmin, double *dmax)
 {
     switch (d->kind) {
     case DEM_DIST_FIXED:
-        *dmax = d->a;
-        if (!(d->a > 0)) return DEM_FAIL(w, DEM_ERR_RANGE, "%s: fixed value %g; allowed > 0", what, d->a);
+        *dmin = *dmax = d->a;
+        if (!(d->a > 0) || !isfinite(d->a))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: fixed value a = %g; allowed > 0 and finite", what, d->a);
         return DEM_OK;
     case DEM_DIST_UNIFORM:
-        *dmax = d->b;
-        if (!(d->a > 0 && d->b >= d->a))
-            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: uniform [%g, %g]; need 0 < a <= b", what, d->a, d->b);
+        *dmin = d->a; *dmax = d->b;
+        if (!(d->a > 0 && d->b >= d->a) || !isfinite(d->b - d->a))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: uniform [a, b] = [%g, %g]; need 0 < a <= b, both finite",
+                            what, d->a, d->b);
         return DEM_OK;
     case DEM_DIST_NORMAL:
-        *dmax = d->a + 3.0 * d->b;
-        if (!(d->a - 3.0 * d->b > 0) || !(d->b >= 0))
-            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: normal mean %g std %g; need mean - 3 std > 0 and std >= 0",
-                            what, d->a, d->b);
+        *dmin = d->a - 3.0 * d->b; *dmax = d->a + 3.0 * d->b;
+        if (!(d->a - 3.0 * d->b > 0) || !(d->b >= 0) || !isfinite(d->a + 3.0 * d->b))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: normal mean a = %g, std dev b = %g; need a - 3 b > 0, b >= 0, "
+                            "both finite", what, d->a, d->b);
         return DEM_OK;
     case DEM_DIST_DISCRETE: {
         if (d->n == 0 || !d->values || !d->weights)
-            return DEM_FAIL(w, DEM_ERR_ARG, "%s: discrete distribution needs n > 0 values and weights", what);
-        double tot = 0, mx = 0;
+            return DEM_FAIL(w, DEM_ERR_ARG, "%s: discrete distribution with n = %zu, values %s, weights %s; "
+                            "need n > 0 values and weights", what, d->n, d->values ? "given" : "NULL",
+                            d->weights ? "given" : "NULL");
+        double tot = 0, mx = 0, mn = INFINITY;
         for (size_t k = 0; k < d->n; ++k) {
-            if (!(d->values[k] > 0) || !(d->weights[k] >= 0))
-                return DEM_FAIL(w, DEM_ERR_RANGE, "%s: discrete value[%zu] = %g, weight %g; need value > 0, weight >= 0",
-                                what, k, d->values[k], d->weights[k]);
+            if (!(d->values[k] > 0) || !(d->weights[k] >= 0) || !isfinite(d->values[k]) || !isfinite(d->weights[k]))
+                return DEM_FAIL(w, DEM_ERR_RANGE, "%s: discrete values[%zu] = %g, weights[%zu] = %g; need "
+                                "value > 0, weight >= 0, both finite", what, k, d->values[k], k, d->weights[k]);
             tot += d->weights[k];
             mx = fmax(mx, d->values[k]);
+            mn = fmin(mn, d->values[k]);
         }
-        if (!(tot > 0)) return DEM_FAIL(w, DEM_ERR_RANGE, "%s: discrete weights sum to %g; need > 0", what, tot);
-        *dmax = mx;
+        if (!(tot > 0) || !isfinite(tot))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: discrete weights sum to %g; need > 0 and finite", what, tot);
+        *dmin = mn; *dmax = mx;
         return DEM_OK;
     }
     }
-    return DEM_FAIL(w, DEM_ERR_ARG, "%s: distribution kind %d unknown", what, (int)d->kind);
+    return DEM_FAIL(w, DEM_ERR_ARG, "%s: distribution kind %d; allowed 0..3 (fixed, uniform, normal, discrete)",
+                    what, (int)d->kind);
 }
 
-static dem_status check_template(dem_world *w, const dem_particle_template *t, double *dmax)
+static dem_status check_template(dem_world *w, const dem_particle_template *t, double *dmax, const char *fn)
 {
-    if (!t) return DEM_FAIL(w, DEM_ERR_ARG, "particle template is NULL");
+    DEM_NEED(w, t, fn);
     if (t->material < 0 || t->material >= w->nmat)
-        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "template material = %d; %d materials defined", t->material, w->nmat);
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "%s: template material = %d; allowed 0..%d (%d materials defined)",
+                        fn, t->material, w->nmat - 1, w->nmat);
     for (int k = 0; k < 3; ++k)
         if (!isfinite(t->velocity[k]))
-            return DEM_FAIL(w, DEM_ERR_RANGE, "template velocity[%d] = %g; must be finite", k, t->velocity[k]);
-    double rmax;
-    dem_status s = check_dist(w, &t->diameter, "diameter", dmax);
+            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: template velocity[%d] = %g; must be finite", fn, k, t->velocity[k]);
+    double dmin, rmin, rmax;
+    char what[64];
+    snprintf(what, sizeof what, "%s: template diameter", fn);
+    dem_status s = check_dist(w, &t->diameter, what, &dmin, dmax);
     if (s) return s;
-    return check_dist(w, &t->density, "density", &rmax);
+    snprintf(what, sizeof what, "%s: template density", fn);
+    if ((s = check_dist(w, &t->density, what, &rmin, &rmax))) return s;
+    /* mass and inertia grow with both: the extremes bound every particle */
+    if (!dem_mass_ok(0.5 * dmin, rmin) || !dem_mass_ok(0.5 * *dmax, rmax))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: template diameters %g..%g and densities %g..%g give a mass or "
+                        "moment of inertia that is not a finite normal double", fn, dmin, *dmax, rmin, rmax);
+    return DEM_OK;
 }
 
 /*--- private placement grid -----------------------------------------------------*/
@@ -77,24 +95,23 @@ static int pgrid_init(pgrid *g, const double lo[3], const double hi[3], double c
 {
     memset(g, 0, sizeof *g);
     g->cs = cs;
-    double tot = 1;
+    double tot = 1, m[3];
     for (int k = 0; k < 3; ++k) {
         g->lo[k] = lo[k];
-        double m = ceil((hi[k] - lo[k]) / cs);
-        if (m < 1) m = 1;
-        g->nc[k] = (int)m;
-        tot *= m;
+        m[k] = ceil((hi[k] - lo[k]) / cs);
+        if (!(m[k] >= 1)) m[k] = 1;
+        tot *= m[k];
     }
     while (tot > 4.0 * (double)expect + 1e6) { /* keep the grid bounded */
         g->cs *= 1.5;
         tot = 1;
         for (int k = 0; k < 3; ++k) {
-            double m = ceil((hi[k] - lo[k]) / g->cs);
-            if (m < 1) m = 1;
-            g->nc[k] = (int)m;
-            tot *= m;
+            m[k] = ceil((hi[k] - lo[k]) / g->cs);
+            if (!(m[k] >= 1)) m[k] = 1;
+            tot *= m[k];
         }
     }
+    for (int k = 0; k < 3; ++k) g->nc[k] = (int)m[k]; /* <= tot, bounded above */
     g->head = malloc((size_t)tot * sizeof(int));
     g->cap = expect + 16;
     g->next = malloc(g->cap * sizeof(int));
@@ -107,8 +124,8 @@ static void pgrid_free(pgrid *g) { free(g->head); free(g->next); free(g->xr); }
 static void pgrid_cell(const pgrid *g, const double *x, int c[3])
 {
     for (int k = 0; k < 3; ++k) {
-        int q = (int)floor((x[k] - g->lo[k]) / g->cs);
-        c[k] = q < 0 ? 0 : (q >= g->nc[k] ? g->nc[k] - 1 : q);
+        double q = floor((x[k] - g->lo[k]) / g->cs);
+        c[k] = q >= 0 ? (q < g->nc[k] ? (int)q : g->nc[k] - 1) : 0; /* clamped before the cast (NaN: 0) */
     }
 }
 static int pgrid_add(pgrid *g, const double *x, double r)
@@ -189,8 +206,9 @@ static dem_status fill(dem_world *w, const region *rg, size_t n, const dem_parti
 {
     if (inserted) *inserted = 0;
     double dmax;
-    dem_status s = check_template(w, t, &dmax);
+    dem_status s = check_template(w, t, &dmax, rg->kind == 0 ? "fill_box" : "fill_cylinder");
     if (s) return s;
+    if ((s = dem_room_for(w, n, rg->kind == 0 ? "fill_box" : "fill_cylinder"))) return s;
     if (n == 0) return DEM_OK;
     double amax = 0.5 * dmax;
     for (size_t i = 0; i < w->n; ++i) amax = fmax(amax, w->rad[i]);
@@ -241,12 +259,15 @@ dem_status dem_world_fill_box(dem_world *w, const double lo[3], const double hi[
                               dem_inside_fn inside, void *user, size_t n,
                               const dem_particle_template *t, size_t *inserted)
 {
-    if (!w || !lo || !hi) return DEM_ERR_ARG;
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, lo, "fill_box");
+    DEM_NEED(w, hi, "fill_box");
     region rg;
     memset(&rg, 0, sizeof rg);
     for (int k = 0; k < 3; ++k) {
         if (!(hi[k] > lo[k]) || !isfinite(hi[k] - lo[k]))
-            return DEM_FAIL(w, DEM_ERR_RANGE, "fill_box: lo[%d] = %g, hi[%d] = %g; need lo < hi", k, lo[k], k, hi[k]);
+            return DEM_FAIL(w, DEM_ERR_RANGE, "fill_box: lo[%d] = %g, hi[%d] = %g; need finite lo < hi with a "
+                            "finite difference", k, lo[k], k, hi[k]);
         rg.lo[k] = lo[k]; rg.hi[k] = hi[k];
     }
     rg.inside = inside; rg.user = user;
@@ -257,12 +278,18 @@ dem_status dem_world_fill_cylinder(dem_world *w, const double base[3], const dou
                                    double radius, double length, size_t n,
                                    const dem_particle_template *t, size_t *inserted)
 {
-    if (!w || !base || !axis) return DEM_ERR_ARG;
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, base, "fill_cylinder");
+    DEM_NEED(w, axis, "fill_cylinder");
     double al = sqrt(dem_dot(axis, axis));
     if (!(al > 0) || !isfinite(al))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: axis (%g %g %g) must be non-zero", axis[0], axis[1], axis[2]);
-    if (!(radius > 0) || !(length > 0))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: radius = %g, length = %g; need > 0", radius, length);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: axis (%g %g %g); need finite, with a length > 0 "
+                        "and finite", axis[0], axis[1], axis[2]);
+    if (!(radius > 0) || !(length > 0) || !isfinite(radius) || !isfinite(length))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: radius = %g, length = %g; need > 0 and finite", radius, length);
+    for (int k = 0; k < 3; ++k)
+        if (!isfinite(base[k]))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: base[%d] = %g; must be finite", k, base[k]);
     region rg;
     memset(&rg, 0, sizeof rg);
     rg.kind = 1;
@@ -278,6 +305,9 @@ dem_status dem_world_fill_cylinder(dem_world *w, const double base[3], const dou
         double top = base[k] + length * rg.ax[k];
         rg.lo[k] = fmin(base[k], top) - radius;
         rg.hi[k] = fmax(base[k], top) + radius;
+        if (!isfinite(rg.hi[k] - rg.lo[k]))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: base (%g %g %g), radius = %g, length = %g; the "
+                            "bounding box must be finite", base[0], base[1], base[2], radius, length);
     }
     return fill(w, &rg, n, t, inserted);
 }
@@ -294,19 +324,29 @@ dem_status dem_world_add_inlet(dem_world *w, size_t nv, const double *polygon,
                                dem_rate_kind kind, double rate, double t_start, double t_end,
                                const dem_particle_template *t, int *inlet_id)
 {
-    if (!w || !polygon) return DEM_ERR_ARG;
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, polygon, "add_inlet");
     double dmax;
-    dem_status s = check_template(w, t, &dmax);
+    dem_status s = check_template(w, t, &dmax, "add_inlet");
     if (s) return s;
-    if (nv < 3) return DEM_FAIL(w, DEM_ERR_ARG, "inlet: polygon has %zu vertices; need >= 3", nv);
+    if (nv < 3 || nv > 1000000)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "add_inlet: nv = %zu polygon vertices; allowed 3..1000000", nv);
     if (kind != DEM_RATE_NUMBER && kind != DEM_RATE_MASS)
-        return DEM_FAIL(w, DEM_ERR_ARG, "inlet: rate kind %d unknown", (int)kind);
+        return DEM_FAIL(w, DEM_ERR_ARG, "add_inlet: rate kind %d; allowed %d (number) or %d (mass)", (int)kind,
+                        (int)DEM_RATE_NUMBER, (int)DEM_RATE_MASS);
     if (!(rate >= 0) || !isfinite(rate))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "inlet: rate = %g; allowed >= 0", rate);
-    if (!(t_end >= t_start)) return DEM_FAIL(w, DEM_ERR_RANGE, "inlet: t_start = %g > t_end = %g", t_start, t_end);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "add_inlet: rate = %g; allowed >= 0 and finite", rate);
+    if (!(t_end >= t_start))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "add_inlet: t_start = %g, t_end = %g; need t_start <= t_end", t_start, t_end);
     if ((t->diameter.kind == DEM_DIST_DISCRETE && t->diameter.n > 32) ||
         (t->density.kind == DEM_DIST_DISCRETE && t->density.n > 32))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "inlet: discrete distributions are limited to 32 values");
+        return DEM_FAIL(w, DEM_ERR_RANGE, "add_inlet: discrete distributions with %zu (diameter) and %zu (density) "
+                        "values; at most 32", t->diameter.kind == DEM_DIST_DISCRETE ? t->diameter.n : 0,
+                        t->density.kind == DEM_DIST_DISCRETE ? t->density.n : 0);
+    for (size_t i = 0; i < 3 * nv; ++i)
+        if (!isfinite(polygon[i]))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "add_inlet: polygon vertex %zu coordinate %zu = %g; must be finite",
+                            i / 3, i % 3, polygon[i]);
     dem_inlet in;
     memset(&in, 0, sizeof in);
     in.nv = nv;
@@ -322,7 +362,11 @@ dem_status dem_world_add_inlet(dem_world *w, size_t nv, const double *polygon,
         nrm[2] += (a[0] - b[0]) * (a[1] + b[1]);
     }
     double l = sqrt(dem_dot(nrm, nrm));
-    if (!(l > 0)) { free(in.poly); return DEM_FAIL(w, DEM_ERR_RANGE, "inlet: polygon has zero area"); }
+    if (!(l > 0) || !isfinite(l)) {
+        free(in.poly);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "add_inlet: polygon of %zu vertices has area %g; need > 0 and finite",
+                        nv, 0.5 * l);
+    }
     for (int k = 0; k < 3; ++k) in.n[k] = nrm[k] / l;
     in.area = 0.5 * l;
     in.kind = kind; in.rate = rate; in.t_start = t_start; in.t_end = t_end;
@@ -343,6 +387,39 @@ dem_status dem_world_add_inlet(dem_world *w, size_t nv, const double *polygon,
     w->inlets[w->ninlets] = in;
     if (inlet_id) *inlet_id = w->ninlets;
     w->ninlets++;
+    return DEM_OK;
+}
+
+/* Checks of a stored inlet (a restored state file). */
+dem_status dem_inlet_check(dem_world *w, const dem_inlet *in, const char *what)
+{
+    if (in->nv < 3 || in->nv > 1000000 || !in->poly)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: nv = %zu polygon vertices; allowed 3..1000000", what, in->nv);
+    for (size_t i = 0; i < 3 * in->nv; ++i)
+        if (!isfinite(in->poly[i]))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: polygon coordinate %zu = %g; must be finite", what, i, in->poly[i]);
+    if (!(in->area > 0) || !isfinite(in->area) || !isfinite(in->n[0] + in->n[1] + in->n[2]))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: area %g, normal (%g %g %g); need a finite area > 0 and normal",
+                        what, in->area, in->n[0], in->n[1], in->n[2]);
+    if ((in->kind != DEM_RATE_NUMBER && in->kind != DEM_RATE_MASS) || !(in->rate >= 0) || !isfinite(in->rate) ||
+        !(in->t_end >= in->t_start))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: rate kind %d, rate %g, t_start %g, t_end %g; need kind 0 or 1, a "
+                        "finite rate >= 0, t_start <= t_end", what, (int)in->kind, in->rate, in->t_start, in->t_end);
+    if ((in->t.diameter.kind == DEM_DIST_DISCRETE && in->t.diameter.n > 32) ||
+        (in->t.density.kind == DEM_DIST_DISCRETE && in->t.density.n > 32))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: discrete distributions of more than 32 values", what);
+    if (!(in->due >= 0) || !isfinite(in->due))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: amount owed %g; need finite and >= 0", what, in->due);
+    dem_particle_template t;
+    inlet_template(in, &t);
+    double dmax;
+    dem_status s = check_template(w, &t, &dmax, what);
+    if (s) return s;
+    if (in->have_next && (!(in->next_d > 0) || !(in->next_rho > 0) || !dem_mass_ok(0.5 * in->next_d, in->next_rho)))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: next particle diameter %g, density %g; need a finite positive mass",
+                        what, in->next_d, in->next_rho);
+    if (in->inserted < 0 || in->inserted > INT64_MAX / 2)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: inserted count %lld", what, (long long)in->inserted);
     return DEM_OK;
 }
 
@@ -477,20 +554,29 @@ static dem_status new_outlet(dem_world *w, int kind, const double *a, const doub
 
 dem_status dem_world_add_outlet_plane(dem_world *w, const double point[3], const double normal[3], int *outlet_id)
 {
-    if (!w || !point || !normal) return DEM_ERR_ARG;
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, point, "add_outlet_plane");
+    DEM_NEED(w, normal, "add_outlet_plane");
     double l = sqrt(dem_dot(normal, normal));
     if (!(l > 0) || !isfinite(l))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "outlet plane: normal (%g %g %g) must be non-zero", normal[0], normal[1], normal[2]);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "add_outlet_plane: normal (%g %g %g); need finite, with a length > 0 "
+                        "and finite", normal[0], normal[1], normal[2]);
+    for (int k = 0; k < 3; ++k)
+        if (!isfinite(point[k]))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "add_outlet_plane: point[%d] = %g; must be finite", k, point[k]);
     double n[3] = {normal[0] / l, normal[1] / l, normal[2] / l};
     return new_outlet(w, 0, point, n, outlet_id);
 }
 
 dem_status dem_world_add_outlet_box(dem_world *w, const double lo[3], const double hi[3], int *outlet_id)
 {
-    if (!w || !lo || !hi) return DEM_ERR_ARG;
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, lo, "add_outlet_box");
+    DEM_NEED(w, hi, "add_outlet_box");
     for (int k = 0; k < 3; ++k)
         if (!(hi[k] > lo[k]))
-            return DEM_FAIL(w, DEM_ERR_RANGE, "outlet box: lo[%d] = %g, hi[%d] = %g; need lo < hi", k, lo[k], k, hi[k]);
+            return DEM_FAIL(w, DEM_ERR_RANGE, "add_outlet_box: lo[%d] = %g, hi[%d] = %g; need lo < hi (infinite "
+                            "bounds allowed)", k, lo[k], k, hi[k]);
     return new_outlet(w, 1, lo, hi, outlet_id);
 }
 
@@ -526,7 +612,8 @@ dem_status dem_world_outlet_totals(const dem_world *w, int outlet_id, int64_t *c
 {
     if (!w) return DEM_ERR_ARG;
     if (outlet_id < 0 || outlet_id >= w->noutlets)
-        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "outlet %d; %d outlets defined", outlet_id, w->noutlets);
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "outlet_totals: outlet %d; allowed 0..%d (%d outlets defined)",
+                        outlet_id, w->noutlets - 1, w->noutlets);
     if (count) *count = w->outlets[outlet_id].count;
     if (mass) *mass = w->outlets[outlet_id].mass;
     return DEM_OK;
@@ -534,7 +621,9 @@ dem_status dem_world_outlet_totals(const dem_world *w, int outlet_id, int64_t *c
 
 dem_status dem_world_removed_records(const dem_world *w, const dem_removed_record **records, size_t *n)
 {
-    if (!w || !records || !n) return DEM_ERR_ARG;
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, records, "removed_records");
+    DEM_NEED(w, n, "removed_records");
     *records = w->rec;
     *n = w->nrec;
     return DEM_OK;

@@ -25,12 +25,14 @@
         (ptr) = q_; (cap) = nc_;                                              \
     } } while (0)
 
-static inline int clampi(int c, int n) { return c < 0 ? 0 : (c >= n ? n - 1 : c); }
-
+/* Cell of a point; clamped in floating point before the conversion, so that
+ * points far outside the domain (or a non-finite one: cell 0) convert safely. */
 static void cell_coords(const dem_world *w, const double *x, int c[3])
 {
-    for (int k = 0; k < 3; ++k)
-        c[k] = clampi((int)floor((x[k] - w->cfg.domain_lo[k]) / w->cs[k]), w->nc[k]);
+    for (int k = 0; k < 3; ++k) {
+        double q = floor((x[k] - w->cfg.domain_lo[k]) / w->cs[k]);
+        c[k] = q >= 0 ? (q < w->nc[k] ? (int)q : w->nc[k] - 1) : 0;
+    }
 }
 
 /* Apply permutation perm[new] = old to a per-particle array of width m doubles. */

@@ -181,8 +181,14 @@ dem_status dem_world_max_dt(dem_world *w, double *dt_max)
 dem_status dem_world_step(dem_world *w, int64_t nsteps)
 {
     if (!w) return DEM_ERR_ARG;
-    if (nsteps < 0) return DEM_FAIL(w, DEM_ERR_RANGE, "nsteps = %lld; allowed >= 0", (long long)nsteps);
+    if (nsteps < 0) return DEM_FAIL(w, DEM_ERR_RANGE, "step: nsteps = %lld; allowed >= 0", (long long)nsteps);
     if (nsteps == 0) return DEM_OK;
+    if (nsteps > INT64_MAX - w->step)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "step: nsteps = %lld after %lld steps; allowed at most %lld (step counter)",
+                        (long long)nsteps, (long long)w->step, (long long)(INT64_MAX - w->step));
+    if (!isfinite(w->time + (double)nsteps * w->cfg.dt))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "step: nsteps = %lld with dt = %g from t = %g; the time would not be "
+                        "finite", (long long)nsteps, w->cfg.dt, w->time);
     double tc, vimp;
     dem_status st = step_contact_time(w, &tc, &vimp);
     if (st) return st;

@@ -3,6 +3,7 @@
   materials, particle storage, diagnostics.
 \*---------------------------------------------------------------------------*/
 #include "dem_private.h"
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -133,29 +134,38 @@ void dem_world_destroy(dem_world **pw)
     *pw = NULL;
 }
 
-dem_status dem_world_configure(dem_world *w, const dem_config *c)
+/* The checks of dem_world_configure (also applied to a restored configuration). */
+dem_status dem_config_check(dem_world *w, const dem_config *c)
 {
-    if (!w || !c) return DEM_ERR_ARG;
     if ((int)c->contact_law < 0 || c->contact_law >= DEM_CONTACT_LAW_COUNT)
         return DEM_FAIL(w, DEM_ERR_ARG, "contact_law = %d; allowed 0..%d",
                         (int)c->contact_law, DEM_CONTACT_LAW_COUNT - 1);
     if (!(c->dt > 0) || !isfinite(c->dt))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "dt = %g; allowed > 0", c->dt);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "dt = %g; allowed > 0 and finite", c->dt);
     for (int k = 0; k < 3; ++k) {
         if (!isfinite(c->gravity[k]))
             return DEM_FAIL(w, DEM_ERR_RANGE, "gravity[%d] = %g; must be finite", k, c->gravity[k]);
         if (!(c->domain_hi[k] > c->domain_lo[k]) || !isfinite(c->domain_hi[k] - c->domain_lo[k]))
-            return DEM_FAIL(w, DEM_ERR_RANGE, "domain_lo[%d] = %g, domain_hi[%d] = %g; need lo < hi",
-                            k, c->domain_lo[k], k, c->domain_hi[k]);
+            return DEM_FAIL(w, DEM_ERR_RANGE, "domain_lo[%d] = %g, domain_hi[%d] = %g; need finite lo < hi "
+                            "with a finite difference", k, c->domain_lo[k], k, c->domain_hi[k]);
     }
     if (!isfinite(c->skin))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "skin = %g; must be finite", c->skin);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "skin = %g; must be finite (<= 0: default)", c->skin);
     if (!(c->max_dt_fraction > 0))
         return DEM_FAIL(w, DEM_ERR_RANGE, "max_dt_fraction = %g; allowed > 0", c->max_dt_fraction);
     if (!(c->impact_speed >= 0) || !isfinite(c->impact_speed))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "impact_speed = %g; allowed >= 0", c->impact_speed);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "impact_speed = %g; allowed >= 0 and finite", c->impact_speed);
     if (!(c->max_overlap_ratio > 0))
         return DEM_FAIL(w, DEM_ERR_RANGE, "max_overlap_ratio = %g; allowed > 0", c->max_overlap_ratio);
+    return DEM_OK;
+}
+
+dem_status dem_world_configure(dem_world *w, const dem_config *c)
+{
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, c, "configure");
+    dem_status st = dem_config_check(w, c);
+    if (st) return st;
     if (w->n + w->ng > 0) {
         int same = c->contact_law == w->cfg.contact_law && c->skin == w->cfg.skin;
         for (int k = 0; k < 3; ++k)
@@ -189,12 +199,13 @@ int64_t dem_world_step_count(const dem_world *w) { return w ? w->step : 0; }
 int64_t dem_world_reorder_count(const dem_world *w) { return w ? w->reorders : 0; }
 
 /*--- materials -----------------------------------------------------------------*/
-static dem_status material_check(dem_world *w, const dem_material *m);
-
 dem_status dem_world_add_material(dem_world *w, const dem_material *m, int *material_id)
 {
-    if (!w || !m) return DEM_ERR_ARG;
-    dem_status st = material_check(w, m);
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, m, "add_material");
+    char what[48];
+    snprintf(what, sizeof what, "add_material: material %d", w->nmat);
+    dem_status st = dem_material_check(w, m, what, 1);
     if (st) return st;
     if (w->nmat == w->capmat) {
         int nc = w->capmat ? 2 * w->capmat : 4;
@@ -215,10 +226,14 @@ dem_status dem_world_add_material(dem_world *w, const dem_material *m, int *mate
 
 dem_status dem_world_set_pair(dem_world *w, int material_a, int material_b, const dem_material *m)
 {
-    if (!w || !m) return DEM_ERR_ARG;
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, m, "set_pair");
     if (material_a < 0 || material_a >= w->nmat || material_b < 0 || material_b >= w->nmat)
-        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "set_pair: materials %d, %d; %d defined", material_a, material_b, w->nmat);
-    dem_status st = material_check(w, m);
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "set_pair: material_a = %d, material_b = %d; allowed 0..%d "
+                        "(%d materials defined)", material_a, material_b, w->nmat - 1, w->nmat);
+    char what[64];
+    snprintf(what, sizeof what, "set_pair(%d, %d): material", material_a, material_b);
+    dem_status st = dem_material_check(w, m, what, 1);
     if (st) return st;
     int k = 0;
     while (k < w->novr && !((w->ovr[k].a == material_a && w->ovr[k].b == material_b) ||
@@ -237,38 +252,43 @@ dem_status dem_world_set_pair(dem_world *w, int material_a, int material_b, cons
     return DEM_OK;
 }
 
-static dem_status material_check(dem_world *w, const dem_material *m)
+/* Checks of a material (what: its name in the message); law_check: also the law's
+ * stiffness (E for Hertz-Mindlin, k_n for spring-dashpot). */
+dem_status dem_material_check(dem_world *w, const dem_material *m, const char *what, int law_check)
 {
     if (!(m->poisson_ratio >= 0.0 && m->poisson_ratio < 0.5))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: poisson_ratio = %g; allowed [0, 0.5)",
-                        w->nmat, m->poisson_ratio);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: poisson_ratio = %g; allowed [0, 0.5)",
+                        what, m->poisson_ratio);
     if (!(m->friction >= 0.0) || !isfinite(m->friction))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: friction = %g; allowed >= 0", w->nmat, m->friction);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: friction = %g; allowed >= 0 and finite", what, m->friction);
     if (!(m->rolling_friction >= 0.0) || !isfinite(m->rolling_friction))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: rolling_friction = %g; allowed >= 0 (a length)",
-                        w->nmat, m->rolling_friction);
-    if (isnan(m->restitution) || isnan(m->damping) || !isfinite(m->youngs_modulus) ||
-        !isfinite(m->stiffness_n) || !isfinite(m->stiffness_t))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: non-finite E, stiffness, restitution or damping",
-                        w->nmat);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: rolling_friction = %g; allowed >= 0 and finite (a length)",
+                        what, m->rolling_friction);
+    if (!isfinite(m->youngs_modulus) || !isfinite(m->stiffness_n) || !isfinite(m->stiffness_t))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: youngs_modulus = %g, stiffness_n = %g, stiffness_t = %g; "
+                        "must be finite", what, m->youngs_modulus, m->stiffness_n, m->stiffness_t);
+    if (isnan(m->restitution) || isnan(m->damping))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: restitution = %g, damping = %g; give restitution in "
+                        "(0, 1] or damping >= 0 (finite), the other < 0", what, m->restitution, m->damping);
     if (m->restitution >= 0.0) {
         if (!(m->restitution > 0.0 && m->restitution <= 1.0))
-            return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: restitution = %g; allowed (0, 1] "
-                            "(or < 0 to derive it from damping)", w->nmat, m->restitution);
+            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: restitution = %g; allowed (0, 1] "
+                            "(or < 0 to derive it from damping)", what, m->restitution);
         if (m->damping >= 0.0)
-            return DEM_FAIL(w, DEM_ERR_ARG, "material %d: restitution = %g and damping = %g both given; "
-                            "give one and set the other < 0", w->nmat, m->restitution, m->damping);
+            return DEM_FAIL(w, DEM_ERR_ARG, "%s: restitution = %g and damping = %g both given; "
+                            "give one and set the other < 0", what, m->restitution, m->damping);
     } else if (!(m->damping >= 0.0) || !isfinite(m->damping)) {
-        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: restitution = %g and damping = %g; give "
-                        "restitution in (0, 1] or damping >= 0", w->nmat, m->restitution, m->damping);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: restitution = %g and damping = %g; give "
+                        "restitution in (0, 1] or damping >= 0 (finite)", what, m->restitution, m->damping);
     }
+    if (!law_check) return DEM_OK;
     int hertz = w->cfg.contact_law == DEM_CONTACT_HERTZ_MINDLIN;
     if (hertz && !(m->youngs_modulus > 0))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: youngs_modulus = %g; allowed > 0 (law %s)",
-                        w->nmat, m->youngs_modulus, law_names[w->cfg.contact_law]);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: youngs_modulus = %g; allowed > 0 (law %s)",
+                        what, m->youngs_modulus, law_names[w->cfg.contact_law]);
     if (!hertz && !(m->stiffness_n > 0))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: stiffness_n = %g; allowed > 0 (law %s)",
-                        w->nmat, m->stiffness_n, law_names[w->cfg.contact_law]);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: stiffness_n = %g; allowed > 0 (law %s)",
+                        what, m->stiffness_n, law_names[w->cfg.contact_law]);
     return DEM_OK;
 }
 
@@ -287,9 +307,11 @@ static void material_derived(const dem_world *w, const dem_material *m, double *
 
 dem_status dem_world_material_get(const dem_world *w, int id, dem_material *m)
 {
-    if (!w || !m) return DEM_ERR_ARG;
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, m, "material_get");
     if (id < 0 || id >= w->nmat)
-        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "material %d; %d defined", id, w->nmat);
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "material_get: material %d; allowed 0..%d (%d defined)", id,
+                        w->nmat - 1, w->nmat);
     *m = w->mat[id];
     if (id < w->nmat_derived && w->derived_law == (int)w->cfg.contact_law) {
         m->restitution = w->mat_e[id];
@@ -339,7 +361,7 @@ dem_status dem_pairs_update(dem_world *w)
 {
     if (!w->pairs_dirty) return DEM_OK;
     int nm = w->nmat;
-    dem_pair *p = realloc(w->pair, (size_t)(nm > 0 ? nm * nm : 1) * sizeof *p);
+    dem_pair *p = realloc(w->pair, (nm > 0 ? (size_t)nm * (size_t)nm : 1) * sizeof *p);
     if (!p) return DEM_FAIL(w, DEM_ERR_NOMEM, "pair table %d x %d", nm, nm);
     w->pair = p;
     if (nm == 0) memset(p, 0, sizeof *p); /* the kernels read entry 0 */
@@ -367,14 +389,14 @@ dem_status dem_pairs_update(dem_world *w)
     for (int i = 0; i < nm; ++i)
         for (int j = 0; j < nm; ++j)
             pair_compute(law, &w->mat[i], w->mat_e[i], w->mat_c[i], &w->mat[j], w->mat_e[j], w->mat_c[j],
-                         i == j, &p[i * nm + j]);
+                         i == j, &p[(size_t)i * (size_t)nm + (size_t)j]);
     for (int k = 0; k < w->novr; ++k) {
         const dem_pair_override *o = &w->ovr[k];
         if (o->a >= nm || o->b >= nm) continue;
         double e, c;
         material_derived(w, &o->m, &e, &c);
-        pair_compute(law, &o->m, e, c, &o->m, e, c, 1, &p[o->a * nm + o->b]);
-        p[o->b * nm + o->a] = p[o->a * nm + o->b];
+        pair_compute(law, &o->m, e, c, &o->m, e, c, 1, &p[(size_t)o->a * (size_t)nm + (size_t)o->b]);
+        p[(size_t)o->b * (size_t)nm + (size_t)o->a] = p[(size_t)o->a * (size_t)nm + (size_t)o->b];
     }
     w->pairs_dirty = 0;
     return DEM_OK;
@@ -454,23 +476,63 @@ static void move_particle(dem_world *w, size_t dst, size_t src)
     }
 }
 
+/* 1 if a sphere of this radius and density has a mass, a moment of inertia
+ * and a squared radius that are finite normal doubles (the integrator
+ * divides by them), computed as dem_append_particle does. */
+int dem_inertia_ok(double m, double r)
+{
+    double r2 = r * r, I = 0.4 * m * r2;
+    return isfinite(m) && m >= DBL_MIN && isfinite(r2) && r2 >= DBL_MIN && isfinite(I) && I >= DBL_MIN &&
+           isfinite(2.5 / m / r2);
+}
+int dem_mass_ok(double r, double rho) { return dem_inertia_ok(rho * 4.0 / 3.0 * DEM_PI * r * r * r, r); }
+
+/* Room for n more particles (owned + ghosts stay within DEM_MAX_PARTICLES). */
+dem_status dem_room_for(dem_world *w, size_t n, const char *what)
+{
+    size_t have = w->n + w->ng;
+    if (n > (size_t)DEM_MAX_PARTICLES - have)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: %zu more particles with %zu present; at most %d particles "
+                        "(owned + ghosts) per world", what, n, have, DEM_MAX_PARTICLES);
+    return DEM_OK;
+}
+
+/* The checks of one particle before it is stored. */
+dem_status dem_particle_check(dem_world *w, const dem_particle *p, const char *what)
+{
+    if (!(p->radius > 0) || !isfinite(p->radius))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: particle id %lld: radius = %g; allowed > 0 and finite",
+                        what, (long long)p->id, p->radius);
+    if (!(p->density > 0) || !isfinite(p->density))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: particle id %lld: density = %g; allowed > 0 and finite",
+                        what, (long long)p->id, p->density);
+    if (!dem_mass_ok(p->radius, p->density))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: particle id %lld: radius = %g and density = %g give a mass or "
+                        "moment of inertia that is not a finite normal double (%g kg)", what, (long long)p->id,
+                        p->radius, p->density, p->density * 4.0 / 3.0 * DEM_PI * p->radius * p->radius * p->radius);
+    if (p->material < 0 || p->material >= w->nmat)
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "%s: particle id %lld: material = %d; allowed 0..%d (%d materials "
+                        "defined)", what, (long long)p->id, p->material, w->nmat - 1, w->nmat);
+    for (int k = 0; k < 3; ++k)
+        if (!isfinite(p->x[k]) || !isfinite(p->v[k]) || !isfinite(p->omega[k]))
+            return DEM_FAIL(w, DEM_ERR_NAN, "%s: particle id %lld: x[%d] = %g, v[%d] = %g, omega[%d] = %g; "
+                            "must be finite", what, (long long)p->id, k, p->x[k], k, p->v[k], k, p->omega[k]);
+    if (p->id == INT64_MAX)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: particle id %lld; allowed 0..%lld (or < 0: assigned)", what,
+                        (long long)p->id, (long long)(INT64_MAX - 1));
+    if (p->id < 0 && w->next_id == INT64_MAX)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: no free particle id left (largest id in use %lld)", what,
+                        (long long)(INT64_MAX - 1));
+    return DEM_OK;
+}
+
 /* Validated append of one owned particle (ghosts, if any, are shifted up). */
 dem_status dem_append_particle(dem_world *w, const dem_particle *p)
 {
-    if (!(p->radius > 0) || !isfinite(p->radius))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "particle id %lld: radius = %g; allowed > 0",
-                        (long long)p->id, p->radius);
-    if (!(p->density > 0) || !isfinite(p->density))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "particle id %lld: density = %g; allowed > 0",
-                        (long long)p->id, p->density);
-    if (p->material < 0 || p->material >= w->nmat)
-        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "particle id %lld: material = %d; %d materials defined",
-                        (long long)p->id, p->material, w->nmat);
-    for (int k = 0; k < 3; ++k)
-        if (!isfinite(p->x[k]) || !isfinite(p->v[k]) || !isfinite(p->omega[k]))
-            return DEM_FAIL(w, DEM_ERR_NAN, "particle id %lld: non-finite position, velocity or "
-                            "angular velocity component %d", (long long)p->id, k);
-    dem_status s = dem_reserve(w, w->n + w->ng + 1);
+    dem_status s = dem_particle_check(w, p, "add particle");
+    if (s) return s;
+    if ((s = dem_room_for(w, 1, "add particle"))) return s;
+    s = dem_reserve(w, w->n + w->ng + 1);
     if (s) return s;
     size_t i = w->n;
     if (w->ng) move_particle(w, w->n + w->ng, w->n); /* first ghost to the end */
@@ -502,9 +564,20 @@ dem_status dem_append_particle(dem_world *w, const dem_particle *p)
 
 dem_status dem_world_add_particles(dem_world *w, size_t n, const dem_particle *p)
 {
-    if (!w || (n && !p)) return DEM_ERR_ARG;
-    if (w->nmat == 0) return DEM_FAIL(w, DEM_ERR_STATE, "add a material before particles");
-    dem_status s = dem_reserve(w, w->n + w->ng + n);
+    if (!w) return DEM_ERR_ARG;
+    if (n) DEM_NEED(w, p, "add_particles");
+    if (w->nmat == 0) return DEM_FAIL(w, DEM_ERR_STATE, "add_particles: no materials yet; add a material before particles");
+    dem_status s = dem_room_for(w, n, "add_particles");
+    if (s) return s;
+    /* all or nothing: check every particle first */
+    for (size_t i = 0; i < n; ++i) {
+        char what[64];
+        snprintf(what, sizeof what, "add_particles: p[%zu]", i);
+        if ((s = dem_particle_check(w, &p[i], what))) return s;
+        if (p[i].id < 0 && w->next_id > INT64_MAX - 1 - (int64_t)i)
+            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: no free particle id left", what);
+    }
+    s = dem_reserve(w, w->n + w->ng + n);
     if (s) return s;
     for (size_t i = 0; i < n; ++i) {
         s = dem_append_particle(w, &p[i]);
@@ -557,17 +630,21 @@ dem_status dem_remove_booked(dem_world *w, size_t i, int outlet)
 dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet)
 {
     if (!w) return DEM_ERR_ARG;
+    if (w->n == 0)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "remove_particle: index %zu; there are no owned particles", index);
     if (index >= w->n)
-        return DEM_FAIL(w, DEM_ERR_RANGE, "remove_particle: index %zu; %zu owned particles", index, w->n);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "remove_particle: index %zu; allowed 0..%zu (%zu owned particles)",
+                        index, w->n - 1, w->n);
     if (outlet >= w->noutlets || outlet < -1)
-        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "remove_particle: outlet %d; %d outlets defined",
-                        outlet, w->noutlets);
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "remove_particle: outlet %d; allowed -1 (none) or 0..%d "
+                        "(%d outlets defined)", outlet, w->noutlets - 1, w->noutlets);
     return dem_remove_booked(w, index, outlet);
 }
 
 dem_status dem_world_arrays(dem_world *w, dem_arrays *a)
 {
-    if (!w || !a) return DEM_ERR_ARG;
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, a, "arrays");
     if (!w->cap) { dem_status s = dem_reserve(w, 64); if (s) return s; }
     dem_status s = dem_ext_alloc(w);
     if (s) return s;
@@ -586,7 +663,8 @@ dem_status dem_world_arrays(dem_world *w, dem_arrays *a)
 /*--- diagnostics -----------------------------------------------------------------*/
 dem_status dem_world_stats(const dem_world *w, dem_stats *s)
 {
-    if (!w || !s) return DEM_ERR_ARG;
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, s, "stats");
     memset(s, 0, sizeof *s);
     for (size_t i = 0; i < w->n; ++i) {
         const double *v = w->v + 3 * i, *om = w->w + 3 * i;
@@ -713,7 +791,8 @@ dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayle
 
 dem_status dem_world_contact_time(const dem_world *wc, double impact_speed, double *t_contact)
 {
-    if (!wc || !t_contact) return DEM_ERR_ARG;
+    if (!wc) return DEM_ERR_ARG;
+    DEM_NEED(wc, t_contact, "contact_time");
     dem_world *w = (dem_world *)wc; /* pair table is a cache */
     dem_status s = dem_pairs_update(w);
     if (s) return s;
