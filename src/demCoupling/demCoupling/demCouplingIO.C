@@ -43,16 +43,11 @@ void Foam::demCoupling::report(const bool full) const
 
     forAll(outletPatches_, k)
     {
-        int64_t cnt = 0;
-        double mass = 0;
-        world_.check
-        (
-            dem_world_outlet_totals(world_, outletIds_[k], &cnt, &mass),
-            "dem_world_outlet_totals"
-        );
+        scalar mass = 0;
+        const label cnt = outletTotal(k, mass);
         Info<< "demCoupling: outlet "
             << mesh_.boundaryMesh()[outletPatches_[k]].name() << ": "
-            << label(cnt) << " particles, " << mass << " kg" << endl;
+            << cnt << " particles, " << mass << " kg" << endl;
     }
     label lost = lostUnknown_;
     forAll(lostPerPatch_, patchi)
@@ -67,6 +62,20 @@ void Foam::demCoupling::report(const bool full) const
     }
     Info<< "demCoupling: lost particles in total " << lost
         << " (global searches " << locator_.nGlobal() << ")" << endl;
+}
+
+
+Foam::label Foam::demCoupling::outletTotal(const label k, scalar& mass) const
+{
+    int64_t cnt = 0;
+    double m = 0;
+    world_.check
+    (
+        dem_world_outlet_totals(world_, outletIds_[k], &cnt, &m),
+        "dem_world_outlet_totals"
+    );
+    mass = m;
+    return label(cnt);
 }
 
 

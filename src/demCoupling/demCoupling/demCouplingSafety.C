@@ -181,15 +181,9 @@ void Foam::demCoupling::progress(const bool force)
         << " (inserted " << label(st.inserted) << ", removed";
     forAll(outletPatches_, k)
     {
-        int64_t cnt = 0;
-        double mass = 0;
-        world_.check
-        (
-            dem_world_outlet_totals(world_, outletIds_[k], &cnt, &mass),
-            "dem_world_outlet_totals"
-        );
+        scalar mass = 0;
         os  << " " << mesh_.boundaryMesh()[outletPatches_[k]].name() << " "
-            << label(cnt);
+            << outletTotal(k, mass);
     }
     if (outletPatches_.empty()) os << " 0";
     os  << ", lost " << nLostTotal_ << ")"
