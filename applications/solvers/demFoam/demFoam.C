@@ -80,16 +80,15 @@ int main(int argc, char *argv[])
     const label iStart = runTime.timeIndex();
     const label injectFluidNaN = demCoupling::injectedStep("fluidNaN");
     const label injectFpe = demCoupling::injectedStep("fpe");
-    std::string failure;
     volatile scalar tGood = runTime.value();
     volatile label iGood = runTime.timeIndex();
+    #include "writeLastGood.H"
 
     Info<< "\nStarting time loop\n" << endl;
 
     if (sigsetjmp(fpeJump, 1))
     {
-        failure = "floating-point exception (SIGFPE) in the fluid solution";
-        #include "writeLastGood.H"
+        writeLastGood("floating-point exception (SIGFPE) in the fluid solution");
     }
     struct sigaction fpeAction, fpeDefault;
     fpeAction.sa_handler = fpeHandler;
@@ -122,8 +121,7 @@ int main(int argc, char *argv[])
         }
         if (!dem.failure().empty())
         {
-            failure = dem.failure();
-            #include "writeLastGood.H"
+            writeLastGood(dem.failure());
         }
 
         const auto tFluid0 = std::chrono::steady_clock::now();
@@ -158,10 +156,10 @@ int main(int argc, char *argv[])
             volatile scalar zero = 0;
             U[0].x() = 1/zero;
         }
-        failure = demCoupling::nonFinite(U, p);
-        if (!failure.empty())
+        const std::string fluidFailure(demCoupling::nonFinite(U, p));
+        if (!fluidFailure.empty())
         {
-            #include "writeLastGood.H"
+            writeLastGood(fluidFailure);
         }
 
         dem.updateDriving(U);
