@@ -171,7 +171,6 @@ Foam::demCoupling::demCoupling
     readTraps_.release();
     failure_.clear();
     maxLost_ = dict_.getOrDefault<label>("maxLostParticles", 0);
-    nLostTotal_ = 0;
     snapBuf_ = nullptr;
     snapSize_ = 0;
     snapCapacity_ = 0;
@@ -227,19 +226,7 @@ Foam::demCoupling::demCoupling
     demDt_ = demDict.get<scalar>("timeStep");
     dragUpdateInterval_ = demDict.getOrDefault<label>("dragUpdateInterval", 0);
 
-    {
-        const scalar dt = mesh.time().deltaTValue();
-        const scalar ratio = dt/demDt_;
-        if (std::round(ratio) < 1 || mag(ratio - std::round(ratio)) > 1e-6*ratio)
-        {
-            FatalIOErrorInFunction(demDict)
-                << "constant/demProperties: keyword dem/timeStep value "
-                << demDt_ << ": the fluid time step deltaT " << dt
-                << " s of system/controlDict is " << ratio << " times it;"
-                << " allowed: deltaT a whole multiple (>= 1) of dem/timeStep"
-                << exit(FatalIOError);
-        }
-    }
+    subSteps(mesh.time().deltaTValue());
 
     configureWorld();
     addWalls();
@@ -908,6 +895,28 @@ void Foam::demCoupling::addInitialParticles()
 
 // * * * * * * * * * * * * * * Per-step work  * * * * * * * * * * * * * * * //
 
+Foam::label Foam::demCoupling::subSteps(const scalar dt) const
+{
+    const label n = label(dt/demDt_ + 0.5);
+    if (n < 1 || mag(n*demDt_ - dt) > 1e-6*dt)
+    {
+        FatalIOErrorInFunction(dict_.subDict("dem"))
+            << "constant/demProperties: keyword dem/timeStep value "
+            << demDt_ << ": the fluid time step deltaT " << dt
+            << " s of system/controlDict is " << dt/demDt_ << " times it;"
+            << " allowed: deltaT a whole multiple (>= 1) of dem/timeStep"
+            << exit(FatalIOError);
+    }
+    return n;
+}
+
+
+Foam::label Foam::demCoupling::lostTotal() const
+{
+    return lostUnknown_ + sum(lostPerPatch_);
+}
+
+
 void Foam::demCoupling::locateAll()
 {
     dem_arrays a = world_.arrays();
@@ -974,11 +983,10 @@ void Foam::demCoupling::locateAll()
         Info<< "demCoupling: " << nOut << " particles left through outlets, "
             << nLost << " lost" << endl;
     }
-    nLostTotal_ += nLost;
-    if (nLost && nLostTotal_ > maxLost_ && failure_.empty())
+    if (nLost && lostTotal() > maxLost_ && failure_.empty())
     {
         OStringStream os;
-        os  << nLostTotal_ << " particles lost in total (left the mesh through"
+        os  << lostTotal() << " particles lost in total (left the mesh through"
             << " patches that are not in outletPatches, see the warnings"
             << " above); constant/demProperties allows maxLostParticles "
             << maxLost_ << ". Make the patch an outlet (outletPatches), fix"
@@ -1109,15 +1117,7 @@ void Foam::demCoupling::evolve
     const scalar tDem0 = tDem_;
 
     const scalar dt = mesh_.time().deltaTValue();
-    const label nDem = label(dt/demDt_ + 0.5);
-    if (nDem < 1 || mag(nDem*demDt_ - dt) > 1e-6*dt)
-    {
-        FatalErrorInFunction
-            << "The fluid time step " << dt << " s is not a whole multiple "
-            << "of the DEM time step dem/timeStep " << demDt_ << " s in "
-            << dict_.name() << "; choose deltaT = N x timeStep"
-            << exit(FatalError);
-    }
+    const label nDem = subSteps(dt);
     nSubCycles_ = nDem;
 
     // 1-2: positions at the start of the step (located by the last call).

@@ -49,7 +49,6 @@ void Foam::demCoupling::report(const bool full) const
             << mesh_.boundaryMesh()[outletPatches_[k]].name() << ": "
             << cnt << " particles, " << mass << " kg" << endl;
     }
-    label lost = lostUnknown_;
     forAll(lostPerPatch_, patchi)
     {
         if (lostPerPatch_[patchi])
@@ -57,10 +56,9 @@ void Foam::demCoupling::report(const bool full) const
             Info<< "demCoupling: lost through "
                 << mesh_.boundaryMesh()[patchi].name() << ": "
                 << lostPerPatch_[patchi] << endl;
-            lost += lostPerPatch_[patchi];
         }
     }
-    Info<< "demCoupling: lost particles in total " << lost
+    Info<< "demCoupling: lost particles in total " << lostTotal()
         << " (global searches " << locator_.nGlobal() << ")" << endl;
 }
 

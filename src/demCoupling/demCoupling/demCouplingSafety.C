@@ -186,7 +186,7 @@ void Foam::demCoupling::progress(const bool force)
             << outletTotal(k, mass);
     }
     if (outletPatches_.empty()) os << " 0";
-    os  << ", lost " << nLostTotal_ << ")"
+    os  << ", lost " << lostTotal() << ")"
         << ", max overlap " << 0.001*std::round(1e5*st.max_overlap_ratio)
         << " % of d"
         << ", time DEM " << label(100*tDem_/total + 0.5)
