@@ -198,6 +198,9 @@ struct dem_world {
     double max_overlap;
     size_t pair_contacts, wall_contacts;
     int forces_valid;
+    /* split step (dem_world_step_drift / dem_world_step_forces) */
+    int drift_pending;       /* 1 between a drift and its force half */
+    double drift_d2max;      /* largest squared displacement since the list build, at the drift */
     double hdt;              /* history increment of the current force evaluation */
     void *scratch;           /* per-row contact buffer of the phased Hertz-Mindlin loop */
     size_t capscratch;       /* entries */
@@ -245,6 +248,7 @@ int        dem_closest_on_triangle(const double *p, const double *a, const doubl
 dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayleigh, double *tc);
 double     dem_hertz_time(double meff, double rstar, double estar, double v);
 dem_status dem_remove_booked(dem_world *w, size_t i, int outlet);
+dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const char *fn);
 
 /* restitution <-> damping mappings (restitution.c) */
 double dem_hm_restitution(double cn);          /* e(c_n), Hertz-Mindlin of [Z] */

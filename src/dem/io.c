@@ -128,6 +128,9 @@ static void save_world(wio *o, const dem_world *w)
 dem_status dem_world_save(const dem_world *w, const char *path)
 {
     if (!w) return DEM_ERR_ARG;
+    if (w->drift_pending)
+        return DEM_FAIL(w, DEM_ERR_STATE, "save: step %lld is half done (dem_world_step_drift was called); "
+                        "a state is saved between steps: call dem_world_step_forces first", (long long)w->step);
     DEM_NEED(w, path, "save");
     FILE *f = fopen(path, "wb");
     if (!f) return DEM_FAIL(w, DEM_ERR_IO, "save: cannot open '%s' for writing", path);
@@ -141,6 +144,9 @@ dem_status dem_world_save(const dem_world *w, const char *path)
 dem_status dem_world_save_memory(const dem_world *w, void **buf, size_t *capacity, size_t *size)
 {
     if (!w) return DEM_ERR_ARG;
+    if (w->drift_pending)
+        return DEM_FAIL(w, DEM_ERR_STATE, "save_memory: step %lld is half done (dem_world_step_drift was called); "
+                        "a state is saved between steps: call dem_world_step_forces first", (long long)w->step);
     if (!buf || !capacity || !size)
         return DEM_FAIL(w, DEM_ERR_ARG, "save_memory: buf, capacity and size must not be NULL");
     /* into the caller's buffer when it is large enough (no allocation,
@@ -572,18 +578,18 @@ static int *row_owner(const dem_world *w)
     return inv;
 }
 
-dem_status dem_world_pack_particle(const dem_world *w, size_t index, void *buf, size_t *size)
+/* pack_particle (hist = 1) and pack_ghost (hist = 0: no contact history) */
+static dem_status pack(const dem_world *w, size_t index, void *buf, size_t *size, int hist, const char *fn)
 {
-    if (!w) return DEM_ERR_ARG;
-    DEM_NEED(w, size, "pack_particle");
+    DEM_NEED(w, size, fn);
     if (index >= w->n + w->ng)
-        return DEM_FAIL(w, DEM_ERR_RANGE, "pack_particle: index %zu; allowed below %zu (owned + ghost particles)",
-                        index, w->n + w->ng);
-    int *inv = row_owner(w);
-    if (!w->list_valid && !inv && w->nrows)
-        return DEM_FAIL(w, DEM_ERR_NOMEM, "pack: row map");
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: index %zu; allowed below %zu (owned + ghost particles)",
+                        fn, index, w->n + w->ng);
+    int *inv = hist ? row_owner(w) : NULL;
+    if (hist && !w->list_valid && !inv && w->nrows)
+        return DEM_FAIL(w, DEM_ERR_NOMEM, "%s: row map", fn);
 #define OWNER(r) (inv ? inv[(r)] : (int)(r))
-    int row = w->nb_off ? w->list_index[index] : -1;
+    int row = hist && w->nb_off ? w->list_index[index] : -1;
     if ((size_t)row >= w->nrows) row = -1;
     uint32_t npair = 0, nwall = 0;
     pack_head hd;
@@ -632,7 +638,7 @@ dem_status dem_world_pack_particle(const dem_world *w, size_t index, void *buf, 
             if (!buf) { *size = need; free(inv); return DEM_OK; }
             if (*size < need) {
                 free(inv);
-                return DEM_FAIL(w, DEM_ERR_RANGE, "pack_particle: *size = %zu bytes; need %zu", *size, need);
+                return DEM_FAIL(w, DEM_ERR_RANGE, "%s: *size = %zu bytes; need %zu", fn, *size, need);
             }
             *size = need;
         }
@@ -658,6 +664,18 @@ dem_status dem_world_pack_particle(const dem_world *w, size_t index, void *buf, 
     }
     memcpy(buf, &hd, sizeof hd);
     return DEM_OK;
+}
+
+dem_status dem_world_pack_particle(const dem_world *w, size_t index, void *buf, size_t *size)
+{
+    if (!w) return DEM_ERR_ARG;
+    return pack(w, index, buf, size, 1, "pack_particle");
+}
+
+dem_status dem_world_pack_ghost(const dem_world *w, size_t index, void *buf, size_t *size)
+{
+    if (!w) return DEM_ERR_ARG;
+    return pack(w, index, buf, size, 0, "pack_ghost");
 }
 
 dem_status dem_world_unpack_particle(dem_world *w, const void *buf, size_t size, int ghost)
@@ -779,40 +797,55 @@ dem_status dem_world_unpack_particle(dem_world *w, const void *buf, size_t size,
     return DEM_OK;
 }
 
+/* The non-zero tangential history of the current list into the pending
+ * store by id: of the pairs of particle index `only` (only >= 0), or of all
+ * owned-ghost pairs (only < 0).  fn names the caller in messages. */
+dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const char *fn)
+{
+    if (!w->nb_off || !w->nrows) return DEM_OK;
+    int row = -1;
+    if (only >= 0) {
+        row = w->list_index[only];
+        if (row < 0 || (size_t)row >= w->nrows) return DEM_OK;
+    }
+    int *inv = malloc((w->nrows + 1) * sizeof(int));
+    if (!inv) return DEM_FAIL(w, DEM_ERR_NOMEM, "%s: row map of %zu rows", fn, w->nrows);
+    for (size_t r = 0; r < w->nrows; ++r) inv[r] = -1;
+    for (size_t q = 0; q < w->n + w->ng; ++q) {
+        int r = w->list_index[q];
+        if (r >= 0 && (size_t)r < w->nrows) inv[r] = (int)q;
+    }
+    for (size_t r = 0; r < w->nrows; ++r) {
+        for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
+            const double *h = w->nb_h + 3 * (size_t)k;
+            if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+            if (only >= 0 && (int)r != row && w->nb_j[k] != row) continue;
+            int a = inv[r], b = inv[w->nb_j[k]];
+            if (a < 0 || b < 0) continue;
+            if (only < 0 && (size_t)a < w->n && (size_t)b < w->n) continue;
+            if (w->npend == w->cappend) {
+                size_t nc = w->cappend ? 2 * w->cappend : 64;
+                dem_pending *q = realloc(w->pend, nc * sizeof *q);
+                if (!q) { free(inv); return DEM_FAIL(w, DEM_ERR_NOMEM, "%s: %zu pending contacts", fn, nc); }
+                w->pend = q; w->cappend = nc;
+            }
+            dem_pending *d = &w->pend[w->npend++];
+            d->ia = w->id[a]; d->ib = w->id[b];
+            memcpy(d->h, h, sizeof d->h);
+        }
+    }
+    free(inv);
+    return DEM_OK;
+}
+
 dem_status dem_world_clear_ghosts(dem_world *w)
 {
     if (!w) return DEM_ERR_ARG;
     if (w->ng == 0) return DEM_OK;
     /* keep the history of owned-ghost contacts by id (a ghost unpacked
        again with the same id gets it back at the next list build) */
-    if (w->nb_off && w->nrows) {
-        int *inv = malloc((w->nrows + 1) * sizeof(int));
-        if (!inv) return DEM_FAIL(w, DEM_ERR_NOMEM, "clear_ghosts: row map");
-        for (size_t r = 0; r < w->nrows; ++r) inv[r] = -1;
-        for (size_t q = 0; q < w->n + w->ng; ++q) {
-            int r = w->list_index[q];
-            if (r >= 0 && (size_t)r < w->nrows) inv[r] = (int)q;
-        }
-        for (size_t r = 0; r < w->nrows; ++r) {
-            for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
-                const double *h = w->nb_h + 3 * (size_t)k;
-                if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
-                int a = inv[r], b = inv[w->nb_j[k]];
-                if (a < 0 || b < 0) continue;
-                if ((size_t)a < w->n && (size_t)b < w->n) continue;
-                if (w->npend == w->cappend) {
-                    size_t nc = w->cappend ? 2 * w->cappend : 64;
-                    dem_pending *q = realloc(w->pend, nc * sizeof *q);
-                    if (!q) { free(inv); return DEM_FAIL(w, DEM_ERR_NOMEM, "clear_ghosts"); }
-                    w->pend = q; w->cappend = nc;
-                }
-                dem_pending *d = &w->pend[w->npend++];
-                d->ia = w->id[a]; d->ib = w->id[b];
-                memcpy(d->h, h, sizeof d->h);
-            }
-        }
-        free(inv);
-    }
+    dem_status st = dem_history_to_pending(w, -1, "clear_ghosts");
+    if (st) return st;
     for (size_t i = w->n; i < w->n + w->ng; ++i) w->list_index[i] = -1;
     w->ng = 0;
     w->list_valid = 0;

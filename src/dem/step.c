@@ -17,6 +17,15 @@
   the fluid).  Rotation is unaffected (no added moment of inertia for a
   sphere).  m_a = 0 gives bit-identical results to the plain update.  The end kick of one step
   and the start kick of the next are done in the same pass.
+  Split step (domain decomposition): dem_world_step_drift (start checks,
+  start kick, drift, clock, outlets/inlets) and dem_world_step_forces (list
+  check, forces, overlap check, end kick) use the same pieces as
+  dem_world_step (step_begin, step_drift, step_force_eval, step_end_kick);
+  the fused pair of kicks does the same IEEE operations as two single
+  kicks, so n drift/forces pairs give the bits of dem_world_step(w, n)
+  (tests/dem/test_decomp.c).  The drift's largest displacement is kept in
+  the world (drift_d2max) for the force half; drift_pending guards the
+  order of the calls.
 \*---------------------------------------------------------------------------*/
 #include "dem_private.h"
 #include <math.h>
@@ -178,17 +187,20 @@ dem_status dem_world_max_dt(dem_world *w, double *dt_max)
     return DEM_OK;
 }
 
-dem_status dem_world_step(dem_world *w, int64_t nsteps)
+/* The start of dem_world_step and dem_world_step_drift: no half step
+ * pending, step counter and time range for nsteps more steps, the time-step
+ * check, a list build if invalid and the first force evaluation. */
+static dem_status step_begin(dem_world *w, int64_t nsteps, const char *fn)
 {
-    if (!w) return DEM_ERR_ARG;
-    if (nsteps < 0) return DEM_FAIL(w, DEM_ERR_RANGE, "step: nsteps = %lld; allowed >= 0", (long long)nsteps);
-    if (nsteps == 0) return DEM_OK;
+    if (w->drift_pending)
+        return DEM_FAIL(w, DEM_ERR_STATE, "%s: step %lld is half done (dem_world_step_drift was called); "
+                        "call dem_world_step_forces first", fn, (long long)w->step);
     if (nsteps > INT64_MAX - w->step)
-        return DEM_FAIL(w, DEM_ERR_RANGE, "step: nsteps = %lld after %lld steps; allowed at most %lld (step counter)",
-                        (long long)nsteps, (long long)w->step, (long long)(INT64_MAX - w->step));
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: nsteps = %lld after %lld steps; allowed at most %lld (step counter)",
+                        fn, (long long)nsteps, (long long)w->step, (long long)(INT64_MAX - w->step));
     if (!isfinite(w->time + (double)nsteps * w->cfg.dt))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "step: nsteps = %lld with dt = %g from t = %g; the time would not be "
-                        "finite", (long long)nsteps, w->cfg.dt, w->time);
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: nsteps = %lld with dt = %g from t = %g; the time would not be "
+                        "finite", fn, (long long)nsteps, w->cfg.dt, w->time);
     double tc, vimp;
     dem_status st = step_contact_time(w, &tc, &vimp);
     if (st) return st;
@@ -196,45 +208,109 @@ dem_status dem_world_step(dem_world *w, int64_t nsteps)
         return DEM_FAIL(w, DEM_ERR_TIMESTEP, "dt = %g exceeds max_dt_fraction %g x smallest contact "
                         "time %g s (impact speed %g m/s) = %g s", w->cfg.dt, w->cfg.max_dt_fraction,
                         tc, vimp, w->cfg.max_dt_fraction * tc);
-    const double vw = max_wall_speed(w);
-    const double dt = w->cfg.dt, h = 0.5 * dt;
-    const double *g = w->cfg.gravity;
     if (!w->list_valid && (st = dem_list_build(w))) return st;
     if (!w->forces_valid) dem_forces(w, 0.0); /* first evaluation: no history increment */
-    const int has_io = w->ninlets > 0 || w->noutlets > 0;
-    dem_status result = DEM_OK;
-    for (int64_t s = 0; s < nsteps; ++s) {
-        double d2max = 0;
-        const size_t n = w->n;
-        if (!w->have_ext) d2max = kick_drift_plain(w, h, dt, g, s > 0 ? 2 : 1);
-        else for (size_t i = 0; i < n; ++i) {
-            kick_n(w, i, h, g, s > 0 ? 2 : 1);
-            double *x = w->x + 3 * i;
-            const double *v = w->v + 3 * i;
-            const float *x0 = w->x0 + 3 * i;
-            x[0] += dt * v[0]; x[1] += dt * v[1]; x[2] += dt * v[2];
-            double e0 = x[0] - x0[0], e1 = x[1] - x0[1], e2 = x[2] - x0[2];
-            double d2 = e0 * e0 + e1 * e1 + e2 * e2;
-            if (d2 > d2max) d2max = d2;
-        }
-        w->step++;
-        w->time += dt;
-        if (has_io) {
-            if ((st = dem_outlets_run(w))) { result = st; break; }
-            if ((st = dem_inlets_run(w))) { result = st; break; }
-        }
-        double dmax = sqrt(d2max), dwall = vw * (w->time - w->t_build);
-        if (!w->list_valid || 2.0 * dmax > w->skin || dmax + dwall > w->skin) {
-            if ((st = dem_list_build(w))) { result = st; break; }
-        }
-        dem_forces(w, dt);
-        if (w->max_overlap > w->cfg.max_overlap_ratio) {
-            result = DEM_FAIL(w, DEM_ERR_OVERLAP, "overlap / diameter = %g exceeds max_overlap_ratio %g "
-                              "at step %lld (t = %g)", w->max_overlap, w->cfg.max_overlap_ratio,
-                              (long long)w->step, w->time);
-            s = nsteps; /* finish with the end kick */
-        }
+    return DEM_OK;
+}
+
+/* nk half kicks and the drift of the owned particles, the clock advanced by
+ * dt and the outlets/inlets run; *d2max: the largest squared displacement
+ * since the last list build (of the particles owned at the drift). */
+static dem_status step_drift(dem_world *w, int nk, double *d2max)
+{
+    const double dt = w->cfg.dt, h = 0.5 * dt;
+    const double *g = w->cfg.gravity;
+    double dm = 0;
+    const size_t n = w->n;
+    if (!w->have_ext) dm = kick_drift_plain(w, h, dt, g, nk);
+    else for (size_t i = 0; i < n; ++i) {
+        kick_n(w, i, h, g, nk);
+        double *x = w->x + 3 * i;
+        const double *v = w->v + 3 * i;
+        const float *x0 = w->x0 + 3 * i;
+        x[0] += dt * v[0]; x[1] += dt * v[1]; x[2] += dt * v[2];
+        double e0 = x[0] - x0[0], e1 = x[1] - x0[1], e2 = x[2] - x0[2];
+        double d2 = e0 * e0 + e1 * e1 + e2 * e2;
+        if (d2 > dm) dm = d2;
     }
-    for (size_t i = 0; i < w->n; ++i) kick1(w, i, h, g);
+    *d2max = dm;
+    w->step++;
+    w->time += dt;
+    dem_status st;
+    if (w->ninlets > 0 || w->noutlets > 0) {
+        if ((st = dem_outlets_run(w))) return st;
+        if ((st = dem_inlets_run(w))) return st;
+    }
+    return DEM_OK;
+}
+
+/* The force half without its end kick: list rebuild if invalid or if the
+ * displacement since the build (d2max of the drift; walls moving at speed
+ * vw) may exceed the skin, the force evaluation and the overlap check. */
+static dem_status step_force_eval(dem_world *w, double d2max, double vw)
+{
+    dem_status st;
+    double dmax = sqrt(d2max), dwall = vw * (w->time - w->t_build);
+    if (!w->list_valid || 2.0 * dmax > w->skin || dmax + dwall > w->skin) {
+        if ((st = dem_list_build(w))) return st;
+    }
+    dem_forces(w, w->cfg.dt);
+    if (w->max_overlap > w->cfg.max_overlap_ratio)
+        return DEM_FAIL(w, DEM_ERR_OVERLAP, "overlap / diameter = %g exceeds max_overlap_ratio %g "
+                        "at step %lld (t = %g)", w->max_overlap, w->cfg.max_overlap_ratio,
+                        (long long)w->step, w->time);
+    return DEM_OK;
+}
+
+/* The end half kick of the owned particles. */
+static void step_end_kick(dem_world *w)
+{
+    const double h = 0.5 * w->cfg.dt;
+    for (size_t i = 0; i < w->n; ++i) kick1(w, i, h, w->cfg.gravity);
+}
+
+dem_status dem_world_step(dem_world *w, int64_t nsteps)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (nsteps < 0) return DEM_FAIL(w, DEM_ERR_RANGE, "step: nsteps = %lld; allowed >= 0", (long long)nsteps);
+    if (w->drift_pending || nsteps > 0) {
+        dem_status st = step_begin(w, nsteps, "step");
+        if (st) return st;
+    }
+    if (nsteps == 0) return DEM_OK;
+    const double vw = max_wall_speed(w);
+    dem_status result = DEM_OK;
+    for (int64_t s = 0; s < nsteps && !result; ++s) {
+        /* the end kick of step s-1 and the start kick of step s in one pass */
+        double d2max;
+        if ((result = step_drift(w, s > 0 ? 2 : 1, &d2max))) break;
+        result = step_force_eval(w, d2max, vw);
+    }
+    step_end_kick(w);
     return result;
+}
+
+dem_status dem_world_step_drift(dem_world *w)
+{
+    if (!w) return DEM_ERR_ARG;
+    dem_status st = step_begin(w, 1, "step_drift");
+    if (st) return st;
+    if ((st = step_drift(w, 1, &w->drift_d2max))) {
+        step_end_kick(w); /* as dem_world_step(w, 1) on this error */
+        return st;
+    }
+    w->drift_pending = 1;
+    return DEM_OK;
+}
+
+dem_status dem_world_step_forces(dem_world *w)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (!w->drift_pending)
+        return DEM_FAIL(w, DEM_ERR_STATE, "step_forces: no half step pending at step %lld; call "
+                        "dem_world_step_drift first (one step = step_drift, then step_forces)", (long long)w->step);
+    w->drift_pending = 0;
+    dem_status st = step_force_eval(w, w->drift_d2max, max_wall_speed(w));
+    step_end_kick(w);
+    return st;
 }

@@ -164,6 +164,9 @@ dem_status dem_world_configure(dem_world *w, const dem_config *c)
 {
     if (!w) return DEM_ERR_ARG;
     DEM_NEED(w, c, "configure");
+    if (w->drift_pending)
+        return DEM_FAIL(w, DEM_ERR_STATE, "configure: step %lld is half done (dem_world_step_drift was called); "
+                        "call dem_world_step_forces first", (long long)w->step);
     dem_status st = dem_config_check(w, c);
     if (st) return st;
     if (w->n + w->ng > 0) {
@@ -593,7 +596,6 @@ void dem_remove_index(dem_world *w, size_t i)
     move_particle(w, i, last);
     if (w->ng) move_particle(w, last, w->n + w->ng - 1);
     w->n--;
-    w->removed++;
     w->list_valid = 0;
     w->reorders++;
 }
@@ -614,6 +616,7 @@ static dem_status book_removal(dem_world *w, size_t i, int outlet)
     r->diameter = 2.0 * w->rad[i];
     r->density = w->rho[i];
     r->outlet = outlet;
+    w->removed++; /* stats.removed: removals booked on an outlet only */
     w->outlets[outlet].count++;
     w->outlets[outlet].mass += w->mass[i];
     return DEM_OK;
@@ -638,6 +641,15 @@ dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet)
     if (outlet >= w->noutlets || outlet < -1)
         return DEM_FAIL(w, DEM_ERR_NOTFOUND, "remove_particle: outlet %d; allowed -1 (none) or 0..%d "
                         "(%d outlets defined)", outlet, w->noutlets - 1, w->noutlets);
+    if (outlet < 0) {
+        /* no outlet (e.g. migration to another rank): the particle's non-zero
+           pair history goes to the pending store by id, so that a partner
+           owned here keeps it when the particle comes back as a ghost before
+           the next list build (entries whose particles are not both here
+           then are dropped there) */
+        dem_status s = dem_history_to_pending(w, (ptrdiff_t)index, "remove_particle");
+        if (s) return s;
+    }
     return dem_remove_booked(w, index, outlet);
 }
 

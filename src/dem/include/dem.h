@@ -143,7 +143,11 @@ typedef struct {
 
 dem_status dem_world_add_particles(dem_world *w, size_t n, const dem_particle *p);
 /** Remove owned particle at storage index i (swap with last).  outlet >= 0
- *  books it on that outlet (count, mass, record); -1 books nothing. */
+ *  books it on that outlet (count, mass, record) and in dem_stats.removed;
+ *  -1 books nothing anywhere (e.g. migration to another rank, or a particle
+ *  the caller counts itself) and keeps the particle's pair contact history
+ *  by id until the next neighbour-list build, so that owned partners get it
+ *  back if the particle returns as a ghost (decomposition support below). */
 dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet);
 
 typedef struct {
@@ -178,6 +182,27 @@ int64_t    dem_world_reorder_count(const dem_world *w);
  *  on, tests/dem/test_fpe.c); a caller running with traps may still prefer
  *  to hold them around the call (feholdexcept) as defence in depth. */
 dem_status dem_world_step(dem_world *w, int64_t nsteps);
+/** Added: one step in two halves, for a decomposed world whose ghosts must
+ *  be refreshed between the drift and the force evaluation.
+ *  dem_world_step_drift: the start checks of dem_world_step (DEM_ERR_NAN,
+ *  DEM_ERR_TIMESTEP, ...; list build and first force evaluation if needed),
+ *  the start half kick and the drift of the owned particles, step and time
+ *  advanced, outlets and inlets run (on an outlet/inlet error the end kick
+ *  is done and the step is complete, as dem_world_step(w, 1) does).  Then
+ *  the caller may migrate (dem_world_pack_particle, dem_world_remove_particle
+ *  (w, i, -1), dem_world_unpack_particle(w, ..., 0)) and refresh the ghosts
+ *  (dem_world_clear_ghosts, dem_world_pack_ghost, dem_world_unpack_particle
+ *  (w, ..., 1)), read and write the arrays, before
+ *  dem_world_step_forces: list rebuild if invalid or if the displacement
+ *  since the build may exceed the skin, force evaluation, the overlap check
+ *  (DEM_ERR_OVERLAP), the end half kick of the owned particles.
+ *  n drift/forces pairs give bit-identical results to dem_world_step(w, n)
+ *  when nothing is changed between the calls (tests/dem/test_decomp.c).
+ *  Order is enforced (DEM_ERR_STATE): step_forces needs a pending drift;
+ *  dem_world_step, step_drift, dem_world_configure and the save calls are
+ *  refused while a drift is pending. */
+dem_status dem_world_step_drift(dem_world *w);
+dem_status dem_world_step_forces(dem_world *w);
 /** The largest time step the next dem_world_step accepts now: max_dt_fraction
  *  x the contact time of its check (HUGE_VAL without particles); the state
  *  is checked first (DEM_ERR_NAN as dem_world_step). */
@@ -255,7 +280,9 @@ typedef struct {
     double momentum[3];
     double max_overlap_ratio;                  /* max overlap / diameter (pairs and walls) */
     size_t pair_contacts, wall_contacts;
-    int64_t inserted, removed;
+    int64_t inserted, removed;                 /* inserted: add_particles, fill, inlets; removed:
+                                                  booked on an outlet.  Not counted: unpack (migration
+                                                  in) and dem_world_remove_particle(w, i, -1) */
     int64_t list_builds;                       /* added: neighbour-list builds so far */
 } dem_stats;
 dem_status dem_world_stats(const dem_world *w, dem_stats *s);
@@ -281,9 +308,27 @@ dem_status dem_world_save_memory(const dem_world *w, void **buf, size_t *capacit
 dem_status dem_world_restore_memory(dem_world *w, const void *buf, size_t size);
 
 /*--- decomposition support --------------------------------------------------------*/
+/* Ghosts take part in the force evaluation only: the half neighbour list holds
+ * owned-owned and owned-ghost pairs (never ghost-ghost), the pair force acts on
+ * the owned particle as in a world owning both, ghosts have no wall contacts
+ * and are neither integrated nor checked nor removed by outlets.  Owned-ghost
+ * pairs are evaluated (and counted in dem_stats.pair_contacts) on both ranks.
+ * Every ghost refresh invalidates the neighbour list (rebuilt, and owned
+ * particles re-sorted, at the next force evaluation: index by id).
+ * Contact history waits in a pending store keyed by ids until the next list
+ * build; if it holds the same pair twice, the entry stored first wins (e.g.
+ * a particle migrating in before dem_world_clear_ghosts: the history packed
+ * with it wins over the one this side kept while it was a ghost here). */
 /** Bytes needed to pack particle i with its contact history (buf NULL) or pack it. */
 dem_status dem_world_pack_particle(const dem_world *w, size_t index, void *buf, size_t *size);
-/** Unpack a particle as owned (ghost = 0) or as a ghost copy (ghost = 1). */
+/** Added: as dem_world_pack_particle but without any contact history, for a
+ *  ghost copy (the receiving side keeps its own owned-ghost history across
+ *  dem_world_clear_ghosts; packed history would add duplicate pending entries). */
+dem_status dem_world_pack_ghost(const dem_world *w, size_t index, void *buf, size_t *size);
+/** Unpack a particle as owned (ghost = 0, with its forces, coupling values and
+ *  contact history; not counted in dem_stats.inserted) or as a ghost copy
+ *  (ghost = 1: pair history kept, wall history ignored).  Neither resets the
+ *  stored forces of the other particles (no new first force evaluation). */
 dem_status dem_world_unpack_particle(dem_world *w, const void *buf, size_t size, int ghost);
 dem_status dem_world_clear_ghosts(dem_world *w);
 
