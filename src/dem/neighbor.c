@@ -63,14 +63,36 @@ static void permute_i64(dem_world *w, int64_t *a, size_t n)
     memcpy(a, t, n * sizeof(int64_t));
 }
 
-static dem_status setup_grid(dem_world *w)
+/* Largest radius of the particles present (owned + ghosts); 1e-300 if none. */
+static double largest_radius(const dem_world *w)
 {
     size_t np = w->n + w->ng;
     double amax = 0;
     for (size_t i = 0; i < np; ++i) if (w->rad[i] > amax) amax = w->rad[i];
-    if (amax <= 0) amax = 1e-300;
+    return amax > 0 ? amax : 1e-300;
+}
+
+/* The skin: dem_config.skin if > 0, else 0.2 x the largest diameter. */
+static double skin_for(const dem_world *w, double amax)
+{
+    return w->cfg.skin > 0 ? w->cfg.skin : 0.4 * amax;
+}
+
+double dem_world_skin(const dem_world *w)
+{
+    if (!w) return 0.0;
+    if (w->cfg.skin > 0) return w->cfg.skin;
+    if (w->nbuilds > 0) return w->skin;                /* chosen at the last build */
+    if (w->n + w->ng == 0) return 0.0;
+    return skin_for(w, largest_radius(w));             /* what a build now would choose */
+}
+
+static dem_status setup_grid(dem_world *w)
+{
+    size_t np = w->n + w->ng;
+    double amax = largest_radius(w);
     w->amax = amax;
-    w->skin = w->cfg.skin > 0 ? w->cfg.skin : 0.4 * amax;
+    w->skin = skin_for(w, amax);
     w->cutoff = 2.0 * amax + w->skin;
     for (int k = 0; k < 3; ++k) {
         double L = w->cfg.domain_hi[k] - w->cfg.domain_lo[k];

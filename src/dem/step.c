@@ -244,14 +244,21 @@ static dem_status step_drift(dem_world *w, int nk, double *d2max)
     return DEM_OK;
 }
 
-/* The force half without its end kick: list rebuild if invalid or if the
- * displacement since the build (d2max of the drift; walls moving at speed
- * vw) may exceed the skin, the force evaluation and the overlap check. */
+/* 1 if the list is invalid or if the displacement since the build (d2max
+ * of the drift; walls moving at speed vw) may exceed the skin: the
+ * criterion of step_force_eval (and of dem_world_list_stale). */
+static int list_needs_build(const dem_world *w, double d2max, double vw)
+{
+    double dmax = sqrt(d2max), dwall = vw * (w->time - w->t_build);
+    return !w->list_valid || 2.0 * dmax > w->skin || dmax + dwall > w->skin;
+}
+
+/* The force half without its end kick: list rebuild if list_needs_build,
+ * the force evaluation and the overlap check. */
 static dem_status step_force_eval(dem_world *w, double d2max, double vw)
 {
     dem_status st;
-    double dmax = sqrt(d2max), dwall = vw * (w->time - w->t_build);
-    if (!w->list_valid || 2.0 * dmax > w->skin || dmax + dwall > w->skin) {
+    if (list_needs_build(w, d2max, vw)) {
         if ((st = dem_list_build(w))) return st;
     }
     dem_forces(w, w->cfg.dt);
@@ -313,4 +320,20 @@ dem_status dem_world_step_forces(dem_world *w)
     dem_status st = step_force_eval(w, w->drift_d2max, max_wall_speed(w));
     step_end_kick(w);
     return st;
+}
+
+int dem_world_list_stale(const dem_world *w)
+{
+    if (!w) return 0;
+    if (!w->drift_pending) return !w->list_valid;
+    return list_needs_build(w, w->drift_d2max, max_wall_speed(w));
+}
+
+dem_status dem_world_invalidate_list(dem_world *w)
+{
+    if (!w) return DEM_ERR_ARG;
+    /* the rebuild carries the history of the current list through
+       list_index (and the pending store), as for any other invalidation */
+    w->list_valid = 0;
+    return DEM_OK;
 }

@@ -479,6 +479,21 @@ static void move_particle(dem_world *w, size_t dst, size_t src)
     }
 }
 
+/* Move the block of cnt particles [src, src + cnt) to [dst, dst + cnt)
+ * (overlap allowed; all per-particle arrays, memmove): the ghost block is
+ * shifted this way so that ghosts keep their order (dem.h). */
+static void move_block(dem_world *w, size_t dst, size_t src, size_t cnt)
+{
+    if (dst == src || cnt == 0) return;
+#define MB(a, m) memmove((a) + (m) * dst, (a) + (m) * src, (m) * cnt * sizeof *(a))
+    MB(w->id, 1); MB(w->x, 3); MB(w->v, 3); MB(w->w, 3); MB(w->f, 3); MB(w->t, 3); MB(w->x0, 3);
+    MB(w->rad, 1); MB(w->mass, 1); MB(w->rho, 1); MB(w->mat_of, 1); MB(w->list_index, 1);
+    if (w->have_ext) {
+        MB(w->fext, 3); MB(w->text, 3); MB(w->uf, 3); MB(w->J, 3); MB(w->K, 1); MB(w->Ma, 1);
+    }
+#undef MB
+}
+
 /* 1 if a sphere of this radius and density has a mass, a moment of inertia
  * and a squared radius that are finite normal doubles (the integrator
  * divides by them), computed as dem_append_particle does. */
@@ -529,7 +544,8 @@ dem_status dem_particle_check(dem_world *w, const dem_particle *p, const char *w
     return DEM_OK;
 }
 
-/* Validated append of one owned particle (ghosts, if any, are shifted up). */
+/* Validated append of one owned particle (the ghost block, if any, is
+ * shifted up by one as a whole: ghosts keep their order). */
 dem_status dem_append_particle(dem_world *w, const dem_particle *p)
 {
     dem_status s = dem_particle_check(w, p, "add particle");
@@ -538,7 +554,7 @@ dem_status dem_append_particle(dem_world *w, const dem_particle *p)
     s = dem_reserve(w, w->n + w->ng + 1);
     if (s) return s;
     size_t i = w->n;
-    if (w->ng) move_particle(w, w->n + w->ng, w->n); /* first ghost to the end */
+    move_block(w, w->n + 1, w->n, w->ng); /* ghosts up by one, order kept */
     w->id[i] = p->id >= 0 ? p->id : w->next_id;
     if (w->id[i] >= w->next_id) w->next_id = w->id[i] + 1;
     for (int k = 0; k < 3; ++k) {
@@ -594,7 +610,7 @@ void dem_remove_index(dem_world *w, size_t i)
 {
     size_t last = w->n - 1;
     move_particle(w, i, last);
-    if (w->ng) move_particle(w, last, w->n + w->ng - 1);
+    move_block(w, last, w->n, w->ng); /* ghosts down by one, order kept */
     w->n--;
     w->list_valid = 0;
     w->reorders++;

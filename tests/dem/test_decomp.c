@@ -12,8 +12,18 @@
  *     id with a reference world owning everything: head-on and oblique
  *     (tangential history, migration during the contact) collisions across
  *     x = 0 with rotation, and a settling bed of 216 Hertz-Mindlin particles.
+ * (b') The same with the Verlet scheme of dem.h: the ghost set is chosen
+ *     only at steps where a list rebuild is due on either rank (OR of
+ *     dem_world_list_stale; then migration, clear_ghosts, ghosts within
+ *     r_i + r_max + skin of x = 0, dem_world_invalidate_list on both), in
+ *     between only the ghost states go over (dem_world_set_ghost_states, in
+ *     the order the ghosts were sent): same comparisons, ghost order checked
+ *     every step, list builds far fewer than steps.
  * (c) Call order (DEM_ERR_STATE), dem_world_pack_ghost sizes, and the
- *     bookkeeping of migration (no inserted/removed counts). */
+ *     bookkeeping of migration (no inserted/removed counts).
+ * (d) Ghost order kept by insertion (inlet during step_drift), owned unpack
+ *     and removal; set_ghost_states errors and that it keeps the list;
+ *     dem_world_skin, dem_world_list_stale, dem_world_invalidate_list. */
 #include "check.h"
 
 /*--- helpers ------------------------------------------------------------------*/
@@ -162,7 +172,19 @@ static void bit_identity(int kind, const char *name, int64_t nsteps)
 }
 
 /*--- (b) two ranks in one process ------------------------------------------------------*/
-typedef struct { dem_world *R, *W[2]; double halo; int nid; int64_t split_steps; double pair_sum[2]; } ranks;
+typedef struct {
+    dem_world *R, *W[2]; double halo; int nid; int64_t split_steps; double pair_sum[2];
+    /* Verlet scheme (b') */
+    int verlet;              /* 1: ghosts chosen at rebuilds only */
+    double rmax, skin;       /* global largest radius, skin in use */
+    int64_t *sent[2];        /* ids W[s] sent as ghosts to W[1-s], in order */
+    size_t nsent[2];
+    int64_t rebuilds;        /* steps with a (global) rebuild */
+    int order_bad;           /* steps where a receiver's ghost order differs from sent[] */
+    int skin_bad;            /* dem_world_skin differing from the configured skin */
+} ranks;
+
+static double cfg_skin = 0; /* dem_config.skin of the worlds of make_b (0: auto) */
 
 static dem_world *make_b(double dt, const double g[3], int wall, double E)
 {
@@ -171,6 +193,7 @@ static dem_world *make_b(double dt, const double g[3], int wall, double E)
     dem_config c;
     dem_config_default(&c);
     c.dt = dt;
+    c.skin = cfg_skin;
     for (int k = 0; k < 3; ++k) { c.gravity[k] = g[k]; c.domain_lo[k] = -0.02; c.domain_hi[k] = 0.02; }
     if (wall) { c.domain_lo[2] = 0; c.domain_hi[2] = 0.04; }
     TRY(w, dem_world_configure(w, &c));
@@ -240,8 +263,70 @@ static void migrate(ranks *r)
         }
 }
 
+/* Verlet scheme: after migration, the ghosts of the new list (owned
+ * particles within r_i + r_max + skin of x = 0), their ids kept in order */
+static void choose_ghosts(ranks *r)
+{
+    for (int s = 0; s < 2; ++s) TRY(r->W[s], dem_world_clear_ghosts(r->W[s]));
+    for (int s = 0; s < 2; ++s) {
+        dem_arrays A;
+        TRY(r->W[s], dem_world_arrays(r->W[s], &A));
+        size_t n = A.n_owned;
+        double skin = dem_world_skin(r->W[s]);
+        r->skin_bad += skin != r->skin;
+        free(r->sent[s]);
+        r->sent[s] = malloc((n + 1) * sizeof(int64_t));
+        r->nsent[s] = 0;
+        for (size_t i = 0; i < n; ++i) {
+            TRY(r->W[s], dem_world_arrays(r->W[s], &A));
+            if (fabs(A.x[3 * i]) < A.radius[i] + r->rmax + skin) {
+                r->sent[s][r->nsent[s]++] = A.id[i];
+                send(r->W[s], i, r->W[1 - s], 1);
+            }
+        }
+    }
+}
+
+/* Verlet scheme between rebuilds: the states of the particles sent at the
+ * last rebuild, in the same order (looked up by id: re-sorted storage) */
+static void send_states(ranks *r)
+{
+    for (int s = 0; s < 2; ++s) {
+        dem_arrays A;
+        TRY(r->W[s], dem_world_arrays(r->W[s], &A));
+        size_t *idx = malloc((size_t)r->nid * sizeof(size_t));
+        for (int k = 0; k < r->nid; ++k) idx[k] = (size_t)-1;
+        for (size_t i = 0; i < A.n_owned; ++i) idx[A.id[i]] = i;
+        double *buf = malloc((9 * r->nsent[s] + 1) * sizeof(double));
+        for (size_t k = 0; k < r->nsent[s]; ++k) {
+            size_t i = idx[r->sent[s][k]];
+            if (i == (size_t)-1) { r->order_bad++; i = 0; } /* cannot happen: no migration in between */
+            memcpy(buf + 9 * k, A.x + 3 * i, 3 * sizeof(double));
+            memcpy(buf + 9 * k + 3, A.v + 3 * i, 3 * sizeof(double));
+            memcpy(buf + 9 * k + 6, A.omega + 3 * i, 3 * sizeof(double));
+        }
+        TRY(r->W[1 - s], dem_world_set_ghost_states(r->W[1 - s], 0, r->nsent[s], buf));
+        free(buf);
+        free(idx);
+    }
+}
+
+/* the receivers hold the ghosts in the order they were sent */
+static void check_ghost_order(ranks *r)
+{
+    for (int s = 0; s < 2; ++s) {
+        dem_arrays A;
+        TRY(r->W[1 - s], dem_world_arrays(r->W[1 - s], &A));
+        int bad = A.n_ghost != r->nsent[s];
+        for (size_t k = 0; k < r->nsent[s] && !bad; ++k) bad = A.id[A.n_owned + k] != r->sent[s][k];
+        r->order_bad += bad;
+    }
+}
+
 static void setup_ranks(ranks *r, double dt, const double g[3], int wall, double E, size_t n, dem_particle *p)
 {
+    memset(r, 0, sizeof *r);
+    r->verlet = cfg_skin > 0;
     r->R = make_b(dt, g, wall, E);
     r->W[0] = make_b(dt, g, wall, E);
     r->W[1] = make_b(dt, g, wall, E);
@@ -249,20 +334,47 @@ static void setup_ranks(ranks *r, double dt, const double g[3], int wall, double
     for (size_t i = 0; i < n; ++i) { p[i].id = (int64_t)i; amax = fmax(amax, p[i].radius); }
     r->halo = 2 * amax + 0.1 * amax;
     r->nid = (int)n;
-    r->split_steps = 0;
-    r->pair_sum[0] = r->pair_sum[1] = 0;
+    r->rmax = amax;
+    r->skin = cfg_skin;
     TRY(r->R, dem_world_add_particles(r->R, n, p));
     for (size_t i = 0; i < n; ++i) {
         int s = p[i].x[0] >= 0;
         TRY(r->W[s], dem_world_add_particles(r->W[s], 1, &p[i]));
     }
-    exchange_ghosts(r); /* before the first force evaluation */
+    /* before the first force evaluation */
+    if (r->verlet) choose_ghosts(r);
+    else exchange_ghosts(r);
 }
 
 static int ghost_moved; /* ghosts changed by a drift or force half (must stay 0) */
 
+/* one step of the Verlet scheme (b') */
+static void step_ranks_verlet(ranks *r)
+{
+    TRY(r->R, dem_world_step_drift(r->R));
+    for (int s = 0; s < 2; ++s) TRY(r->W[s], dem_world_step_drift(r->W[s]));
+    int stale = dem_world_list_stale(r->W[0]) || dem_world_list_stale(r->W[1]); /* MPI: allreduce(LOR) */
+    if (stale) {
+        migrate(r);
+        choose_ghosts(r);
+        for (int s = 0; s < 2; ++s) TRY(r->W[s], dem_world_invalidate_list(r->W[s]));
+        r->rebuilds++;
+    } else {
+        send_states(r);
+    }
+    check_ghost_order(r);
+    TRY(r->R, dem_world_step_forces(r->R));
+    for (int s = 0; s < 2; ++s) {
+        TRY(r->W[s], dem_world_step_forces(r->W[s]));
+        dem_stats st;
+        TRY(r->W[s], dem_world_stats(r->W[s], &st));
+        r->pair_sum[s] += (double)st.pair_contacts;
+    }
+}
+
 static void step_ranks(ranks *r)
 {
+    if (r->verlet) { step_ranks_verlet(r); return; }
     TRY(r->R, dem_world_step_drift(r->R));
     for (int s = 0; s < 2; ++s) {
         dem_arrays A;
@@ -313,7 +425,10 @@ static void compare_ranks(ranks *r, const char *name, double tol_x, double tol_v
             size_t j = index_of(&A[s], R.id[i]);
             if (j == (size_t)-1) continue;
             found++;
-            if ((A[s].x[3 * j] >= 0) != s) wrong_side++;
+            /* Verlet scheme: migration at rebuilds only, a particle strays
+               less than skin/2 (else a rebuild is due) */
+            double slack = r->verlet ? 0.5 * r->skin : 0.0;
+            if (s ? A[s].x[3 * j] < -slack : A[s].x[3 * j] >= slack) wrong_side++;
             for (int k = 0; k < 3; ++k) {
                 dx = fmax(dx, fabs(A[s].x[3 * j + k] - R.x[3 * i + k]));
                 dv = fmax(dv, fabs(A[s].v[3 * j + k] - R.v[3 * i + k]));
@@ -332,7 +447,8 @@ static void compare_ranks(ranks *r, const char *name, double tol_x, double tol_v
     check_abs(nm, missing, 0, 0);
     snprintf(nm, sizeof nm, "%s: reference ids owned by both ranks", name);
     check_abs(nm, twice, 0, 0);
-    snprintf(nm, sizeof nm, "%s: owned particles on the wrong side of x = 0", name);
+    if (r->verlet) snprintf(nm, sizeof nm, "%s: owned particles more than skin/2 on the wrong side of x = 0", name);
+    else snprintf(nm, sizeof nm, "%s: owned particles on the wrong side of x = 0", name);
     check_abs(nm, wrong_side, 0, 0);
     snprintf(nm, sizeof nm, "%s: max |x - x_ref| / %g m", name, scale_x);
     check_abs(nm, dx / scale_x, 0.0, tol_x);
@@ -346,8 +462,32 @@ static void compare_ranks(ranks *r, const char *name, double tol_x, double tol_v
     check_abs(nm, dP / (mtot * scale_v), 0.0, tol_v);
 }
 
+/* checks of the Verlet scheme after a run of nsteps */
+static void verlet_checks(ranks *r, const char *name, int64_t nsteps, double max_build_fraction, int min_rebuilds)
+{
+    char nm[200];
+    if (!r->verlet) return;
+    snprintf(nm, sizeof nm, "%s: steps with a receiver's ghost order differing from the send order", name);
+    check_abs(nm, r->order_bad, 0, 0);
+    snprintf(nm, sizeof nm, "%s: dem_world_skin differing from dem_config.skin (calls)", name);
+    check_abs(nm, r->skin_bad, 0, 0);
+    for (int s = 0; s < 2; ++s) {
+        dem_stats st;
+        TRY(r->W[s], dem_world_stats(r->W[s], &st));
+        /* one build at the first drift, then one per global rebuild */
+        snprintf(nm, sizeof nm, "%s: list builds of rank %c = 1 + steps with a global rebuild", name, "AB"[s]);
+        check_abs(nm, (double)st.list_builds, 1.0 + (double)r->rebuilds, 0.0);
+        snprintf(nm, sizeof nm, "%s: list builds of rank %c / steps (%lld steps)", name, "AB"[s], (long long)nsteps);
+        check_below(nm, (double)st.list_builds / (double)nsteps, max_build_fraction);
+    }
+    snprintf(nm, sizeof nm, "%s: global rebuilds (ghost set re-chosen; >= %d: not vacuous)", name, min_rebuilds);
+    check_range(nm, (double)r->rebuilds, min_rebuilds, 1e9);
+}
+
 static void free_ranks(ranks *r)
 {
+    free(r->sent[0]);
+    free(r->sent[1]);
     dem_world_destroy(&r->R);
     dem_world_destroy(&r->W[0]);
     dem_world_destroy(&r->W[1]);
@@ -383,6 +523,7 @@ static void two_particles(const char *name, double b, double U, double xc0)
     check_abs(nm, r.pair_sum[0] + r.pair_sum[1], (double)contact_steps + (double)r.split_steps, 0.0);
     /* round-off only (a different force summation order) over a few hundred steps */
     compare_ranks(&r, name, 1e-9, 1e-9, 1e-9, 2 * a, vrel, vrel / a);
+    verlet_checks(&r, name, nsteps, 0.2, U > 0 ? 1 : 0); /* head-on: < skin/2 of travel */
     if (U > 0) {
         dem_arrays A;
         TRY(r.W[1], dem_world_arrays(r.W[1], &A));
@@ -410,23 +551,25 @@ static void bed(int64_t nsteps)
     TRY(r.W[0], dem_world_stats(r.W[0], &st[1]));
     TRY(r.W[1], dem_world_stats(r.W[1], &st[2]));
     char nm[200];
-    snprintf(nm, sizeof nm, "bed %lld steps: pair contacts of the reference (settled bed; not vacuous)", (long long)nsteps);
+    const char *pre = r.verlet ? "Verlet scheme: " : "";
+    snprintf(nm, sizeof nm, "%sbed %lld steps: pair contacts of the reference (settled bed; not vacuous)", pre, (long long)nsteps);
     check_range(nm, (double)st[0].pair_contacts, QUICK ? 5 : 100, 2000);
-    snprintf(nm, sizeof nm, "bed %lld steps: wall contacts A + B vs reference (ghosts have none)", (long long)nsteps);
+    snprintf(nm, sizeof nm, "%sbed %lld steps: wall contacts A + B vs reference (ghosts have none)", pre, (long long)nsteps);
     check_abs(nm, (double)(st[1].wall_contacts + st[2].wall_contacts), (double)st[0].wall_contacts, 2.0);
-    snprintf(nm, sizeof nm, "bed %lld steps: removed and inserted counts of A and B (migration counts neither)",
-             (long long)nsteps);
+    snprintf(nm, sizeof nm, "%sbed %lld steps: removed and inserted counts of A and B (migration counts neither)",
+             pre, (long long)nsteps);
     check_abs(nm, (double)(st[1].removed + st[2].removed + st[1].inserted + st[2].inserted),
               (double)n, 0.0);
-    snprintf(nm, sizeof nm, "bed %lld steps: steps with a migration (not vacuous)", (long long)nsteps);
+    snprintf(nm, sizeof nm, "%sbed %lld steps: steps with a migration (not vacuous)", pre, (long long)nsteps);
     check_range(nm, (double)migrations, QUICK ? 0 : 1, 1e9);
     /* A dense bed is chaotic: the round-off of a different force summation
        order (rebuilt lists, owned-ghost pairs evaluated from the other side)
        grows over the settling.  Measured after 2000 steps (x86-64, gcc -O2):
        x 1.3e-13 x 2 mm, v 2.8e-12 x 0.1 m/s, omega 3.7e-12 x 100 1/s,
        momentum 3e-14 (docs/demCore.md); the bounds are ~300x those. */
-    snprintf(nm, sizeof nm, "bed %lld steps", (long long)nsteps);
+    snprintf(nm, sizeof nm, "%sbed %lld steps", pre, (long long)nsteps);
     compare_ranks(&r, nm, 5e-11, 1e-9, 1e-9, 2e-3, 0.1, 0.1 / 1e-3);
+    verlet_checks(&r, nm, nsteps, 0.2, QUICK ? 1 : 5);
     free_ranks(&r);
 }
 
@@ -505,6 +648,179 @@ static void order_and_bookkeeping(void)
     dem_world_destroy(&w);
 }
 
+/*--- (d) ghost order, set_ghost_states, list control ----------------------------------------*/
+/* ghost ids at positions 0..ng-1 equal ref[] (count of differences; ng mismatch counts 1000) */
+static int ghost_order_diff(dem_world *w, const int64_t *ref, size_t ng)
+{
+    dem_arrays A;
+    TRY(w, dem_world_arrays(w, &A));
+    if (A.n_ghost != ng) return 1000;
+    int d = 0;
+    for (size_t k = 0; k < ng; ++k) d += A.id[A.n_owned + k] != ref[k];
+    return d;
+}
+
+static void ghost_order_and_list_control(void)
+{
+    /* skin: auto (0.2 x the largest diameter) before the first build */
+    dem_world *w = make_a(PERIODIC_IO);
+    dem_arrays A;
+    TRY(w, dem_world_arrays(w, &A));
+    double amax = 0;
+    for (size_t i = 0; i < A.n_owned; ++i) amax = fmax(amax, A.radius[i]);
+    check_abs("dem_world_skin, auto, before any build = 0.4 x largest radius [m]", dem_world_skin(w), 0.4 * amax, 0.0);
+    check_abs("dem_world_skin(NULL) = 0", dem_world_skin(NULL), 0.0, 0.0);
+    check_abs("dem_world_list_stale(NULL) = 0", dem_world_list_stale(NULL), 0, 0);
+    check_abs("dem_world_list_stale before any build = 1", dem_world_list_stale(w), 1, 0);
+    TRY(w, dem_world_step(w, 10));
+    check_abs("dem_world_skin, auto, after a build = 0.4 x largest radius [m]", dem_world_skin(w), 0.4 * amax, 0.0);
+    check_abs("dem_world_list_stale between steps (valid list) = 0", dem_world_list_stale(w), 0, 0);
+
+    /* five ghosts (ids 1000000 + k) well away from the owned particles */
+    dem_world *d = NULL;
+    TRY(d, dem_world_create(&d));
+    dem_config c;
+    dem_config_default(&c);
+    TRY(d, dem_world_configure(d, &c));
+    dem_material m = test_material(1e7, 0.3, 0.4, 1e-5, 0.6);
+    int mid;
+    TRY(d, dem_world_add_material(d, &m, &mid));
+    enum { NG = 5 };
+    dem_particle gp[NG];
+    int64_t gid[NG];
+    for (int k = 0; k < NG; ++k) {
+        gp[k] = test_particle(0.0085, -0.008 + 0.0035 * k, 0.018, 0, 0, 0, 0.8e-3, 2500, 0);
+        gp[k].id = gid[k] = 1000000 + 7 * (NG - k); /* descending ids: order not by id */
+    }
+    TRY(d, dem_world_add_particles(d, NG, gp));
+    for (int k = 0; k < NG; ++k) send(d, (size_t)k, w, 1);
+    check_abs("ghost ids at positions 0..4 after unpack (differences)", ghost_order_diff(w, gid, NG), 0, 0);
+
+    /* steps with the inlet inserting during step_drift while ghosts exist */
+    dem_stats s0, s1;
+    int ins_steps = 0, order_bad = 0, stale_bad = 0, quiet_steps = 0, quiet_bad = 0;
+    double xvw[9 * NG];
+    for (int step = 0; step < 200; ++step) {
+        TRY(w, dem_world_stats(w, &s0));
+        TRY(w, dem_world_step_drift(w));
+        TRY(w, dem_world_stats(w, &s1));
+        order_bad += ghost_order_diff(w, gid, NG) != 0;
+        if (s1.inserted > s0.inserted) {
+            ins_steps++;
+            stale_bad += dem_world_list_stale(w) != 1; /* insertion invalidates the list */
+        }
+        /* refresh the ghost states (unchanged values) without invalidating */
+        TRY(w, dem_world_arrays(w, &A));
+        for (int k = 0; k < NG; ++k) {
+            size_t i = A.n_owned + (size_t)k;
+            memcpy(xvw + 9 * k, A.x + 3 * i, 3 * sizeof(double));
+            memcpy(xvw + 9 * k + 3, A.v + 3 * i, 3 * sizeof(double));
+            memcpy(xvw + 9 * k + 6, A.omega + 3 * i, 3 * sizeof(double));
+        }
+        int stale = dem_world_list_stale(w);
+        int64_t ro = dem_world_reorder_count(w);
+        TRY(w, dem_world_set_ghost_states(w, 0, NG, xvw));
+        if (!stale) {
+            quiet_steps++;
+            quiet_bad += dem_world_list_stale(w) != 0 || dem_world_reorder_count(w) != ro;
+        }
+        TRY(w, dem_world_step_forces(w));
+    }
+    check_range("inlet: steps inserting during step_drift with ghosts present (not vacuous)", ins_steps, 5, 200);
+    check_abs("inlet: steps where the ghost ids at positions 0..4 changed", order_bad, 0, 0);
+    check_abs("inlet: insertion steps where dem_world_list_stale is not 1", stale_bad, 0, 0);
+    check_range("set_ghost_states: steps with a valid list (not vacuous)", quiet_steps, 5, 200);
+    check_abs("set_ghost_states: steps where it made the list stale or changed the reorder count", quiet_bad, 0, 0);
+    dem_arrays B;
+    TRY(w, dem_world_arrays(w, &B));
+    check_abs("ghost position 2 holds id 1000021 after the inlet steps", (double)B.id[B.n_owned + 2], 1000021.0, 0.0);
+
+    /* removal (-1) and owned unpack keep the ghost order */
+    size_t sz = 0;
+    TRY(w, dem_world_pack_particle(w, 0, NULL, &sz));
+    void *pb = malloc(sz);
+    TRY(w, dem_world_pack_particle(w, 0, pb, &sz));
+    TRY(w, dem_world_remove_particle(w, 0, -1));
+    check_abs("remove_particle(-1): ghost order kept (differences)", ghost_order_diff(w, gid, NG), 0, 0);
+    TRY(w, dem_world_unpack_particle(w, pb, sz, 0));
+    free(pb);
+    check_abs("unpack owned: ghost order kept (differences)", ghost_order_diff(w, gid, NG), 0, 0);
+    TRY(w, dem_world_step(w, 2)); /* list build: owned re-sorted, ghosts not */
+    check_abs("list build with spatial sort: ghost order kept (differences)", ghost_order_diff(w, gid, NG), 0, 0);
+
+    /* set_ghost_states: the values land at their positions; errors */
+    TRY(w, dem_world_arrays(w, &A));
+    double one[9] = {0.0085, 0.0, 0.019, 0.01, 0.02, 0.03, 1, 2, 3};
+    TRY(w, dem_world_set_ghost_states(w, 3, 1, one));
+    TRY(w, dem_world_arrays(w, &A));
+    size_t i3 = A.n_owned + 3;
+    double dset = 0;
+    for (int k = 0; k < 3; ++k)
+        dset = fmax(dset, fmax(fabs(A.x[3 * i3 + k] - one[k]),
+                               fmax(fabs(A.v[3 * i3 + k] - one[3 + k]), fabs(A.omega[3 * i3 + k] - one[6 + k]))));
+    check_abs("set_ghost_states: x, v, omega of ghost position 3 as given (max |difference|)", dset, 0.0, 0.0);
+    check_status("set_ghost_states [3, 6) of 5 ghosts: DEM_ERR_RANGE", dem_world_set_ghost_states(w, 3, 3, xvw),
+                 DEM_ERR_RANGE);
+    printf("# message: %s\n", dem_world_last_error(w));
+    check_status("set_ghost_states first = 6, count 0: DEM_ERR_RANGE", dem_world_set_ghost_states(w, 6, 0, NULL),
+                 DEM_ERR_RANGE);
+    check_status("set_ghost_states first = 5, count 0: no-op", dem_world_set_ghost_states(w, 5, 0, NULL), DEM_OK);
+    check_status("set_ghost_states xvw NULL: DEM_ERR_ARG", dem_world_set_ghost_states(w, 0, 1, NULL), DEM_ERR_ARG);
+    check_status("set_ghost_states(NULL world): DEM_ERR_ARG", dem_world_set_ghost_states(NULL, 0, 1, one), DEM_ERR_ARG);
+    double bad[18];
+    memcpy(bad, one, sizeof one);
+    memcpy(bad + 9, one, sizeof one);
+    bad[0] = -0.0031; /* ghost 0: finite, must not be set */
+    bad[9 + 4] = NAN;
+    check_status("set_ghost_states with a NaN velocity: DEM_ERR_NAN", dem_world_set_ghost_states(w, 0, 2, bad),
+                 DEM_ERR_NAN);
+    printf("# message: %s\n", dem_world_last_error(w));
+    TRY(w, dem_world_arrays(w, &A));
+    check_abs("set_ghost_states with a NaN: nothing set (all or nothing; x of ghost 0 unchanged)",
+              A.x[3 * A.n_owned] == bad[0] ? 1.0 : 0.0, 0.0, 0.0);
+    TRY(w, dem_world_clear_ghosts(w));
+    check_status("set_ghost_states without ghosts: DEM_ERR_RANGE", dem_world_set_ghost_states(w, 0, 1, one),
+                 DEM_ERR_RANGE);
+    dem_world_destroy(&d);
+    dem_world_destroy(&w);
+
+    /* invalidate_list: one more build, contact history carried over (a lost
+       history would change v by ~ mu g dt = 2e-5 m/s in one step) */
+    dem_world *w1 = make_a(BED_WALLS), *w2 = make_a(BED_WALLS);
+    TRY(w1, dem_world_step(w1, QUICK ? 800 : 3000));
+    TRY(w2, dem_world_step(w2, QUICK ? 800 : 3000));
+    dem_stats b0, b1;
+    TRY(w2, dem_world_stats(w2, &b0));
+    check_status("invalidate_list", dem_world_invalidate_list(w2), DEM_OK);
+    check_abs("dem_world_list_stale after invalidate_list = 1", dem_world_list_stale(w2), 1, 0);
+    check_status("invalidate_list(NULL): DEM_ERR_ARG", dem_world_invalidate_list(NULL), DEM_ERR_ARG);
+    TRY(w1, dem_world_step_drift(w1));
+    TRY(w2, dem_world_step_drift(w2));
+    check_abs("dem_world_list_stale after a drift following invalidate_list (list built at its start) = 0 or 1",
+              dem_world_list_stale(w2) == dem_world_list_stale(w1) ? 0 : 1, 0, 0);
+    TRY(w1, dem_world_step_forces(w1));
+    TRY(w2, dem_world_invalidate_list(w2)); /* between the halves, as the coupling does */
+    TRY(w2, dem_world_step_forces(w2));
+    TRY(w2, dem_world_stats(w2, &b1));
+    check_abs("invalidate_list before the step and between the halves: list builds + 2",
+              (double)(b1.list_builds - b0.list_builds), 2.0, 0.0);
+    dem_arrays a1, a2;
+    TRY(w1, dem_world_arrays(w1, &a1));
+    TRY(w2, dem_world_arrays(w2, &a2));
+    double dv = 0;
+    int nf = 0;
+    for (size_t i = 0; i < a1.n_owned; ++i) {
+        size_t j = index_of(&a2, a1.id[i]);
+        if (j == (size_t)-1) { nf++; continue; }
+        for (int k = 0; k < 3; ++k) dv = fmax(dv, fabs(a1.v[3 * i + k] - a2.v[3 * j + k]));
+    }
+    check_abs("invalidate_list: ids missing after the rebuilds", nf, 0, 0);
+    check_abs("invalidate_list: max |v - v (no invalidation)| / 0.1 m/s after one step (history kept)", dv / 0.1,
+              0.0, 1e-11);
+    dem_world_destroy(&w1);
+    dem_world_destroy(&w2);
+}
+
 int main(void)
 {
     const int64_t na = QUICK ? 800 : 6000;
@@ -515,6 +831,15 @@ int main(void)
     two_particles("two ranks oblique, migration in contact", 1e-3, 0.2, -2e-5);
     bed(QUICK ? 300 : 2000);
     check_abs("ghosts moved by a drift or force half (count)", ghost_moved, 0, 0);
+    /* (b') Verlet scheme: explicit skin, the same on both ranks (0.2 x the
+       largest diameter, as the auto skin of the reference) */
+    cfg_skin = 0.4 * 1e-3;
+    two_particles("Verlet scheme: two ranks head-on", 0.0, 0.0, -1e-3);
+    two_particles("Verlet scheme: two ranks oblique, migration in contact", 1e-3, 0.2, -2e-5);
+    cfg_skin = 0.4 * 1.1e-3;
+    bed(QUICK ? 300 : 2000);
+    cfg_skin = 0;
     order_and_bookkeeping();
+    ghost_order_and_list_control();
     return check_exit();
 }

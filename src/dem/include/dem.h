@@ -15,8 +15,9 @@
     resizing call: add/remove particles, insertion, dem_world_step() when
     inlets or outlets are active, dem_world_restore(), unpack.
   - Particles have a stable 64-bit global id separate from their storage
-    index; removal swaps with the last particle.  Owned particles occupy
-    indices [0, n_owned), ghost copies [n_owned, n_owned + n_ghost).
+    index; removal swaps with the last owned particle.  Owned particles
+    occupy indices [0, n_owned), ghost copies [n_owned, n_owned + n_ghost)
+    in the order they were unpacked (decomposition support below).
 \*---------------------------------------------------------------------------*/
 #ifndef DEM_H
 #define DEM_H
@@ -203,6 +204,27 @@ dem_status dem_world_step(dem_world *w, int64_t nsteps);
  *  refused while a drift is pending. */
 dem_status dem_world_step_drift(dem_world *w);
 dem_status dem_world_step_forces(dem_world *w);
+/** Added: 1 if the next dem_world_step_forces would rebuild the neighbour
+ *  list, else 0.  Meant between dem_world_step_drift and step_forces: the
+ *  list is invalid (insertion, removal, unpack, clear_ghosts,
+ *  dem_world_invalidate_list, ... since the build) or the largest
+ *  displacement of the owned particles since the build, d, may exceed the
+ *  skin (2 d > skin, or d + moving-wall speed x time since the build > skin).
+ *  Without a pending drift: 1 if the list is invalid, else 0.  0 for NULL.
+ *  Decomposed runs: the OR over all ranks decides a rebuild everywhere. */
+int        dem_world_list_stale(const dem_world *w);
+/** Added: the next force evaluation (step_forces, or the start of a step)
+ *  rebuilds the neighbour list (e.g. another rank needs a rebuild).  The
+ *  contact history is carried over exactly as by any rebuild; the stored
+ *  forces and the particles are unchanged. */
+dem_status dem_world_invalidate_list(dem_world *w);
+/** Added: the Verlet skin in use [m]: dem_config.skin if > 0; else (auto,
+ *  0.2 x the largest diameter of the owned and ghost particles present at
+ *  a build) the skin chosen at the last list build, or before any build the
+ *  one a build now would choose (0 without particles).  An auto skin can
+ *  change at a build and differ between ranks: give decomposed runs
+ *  dem_config.skin > 0, the same on every rank. */
+double     dem_world_skin(const dem_world *w);
 /** The largest time step the next dem_world_step accepts now: max_dt_fraction
  *  x the contact time of its check (HUGE_VAL without particles); the state
  *  is checked first (DEM_ERR_NAN as dem_world_step). */
@@ -313,8 +335,27 @@ dem_status dem_world_restore_memory(dem_world *w, const void *buf, size_t size);
  * the owned particle as in a world owning both, ghosts have no wall contacts
  * and are neither integrated nor checked nor removed by outlets.  Owned-ghost
  * pairs are evaluated (and counted in dem_stats.pair_contacts) on both ranks.
- * Every ghost refresh invalidates the neighbour list (rebuilt, and owned
- * particles re-sorted, at the next force evaluation: index by id).
+ * Every ghost refresh (clear_ghosts, unpack) invalidates the neighbour list
+ * (rebuilt, and owned particles re-sorted, at the next force evaluation: index
+ * by id); dem_world_set_ghost_states does not.
+ * Ghost order: ghosts occupy [n_owned, n_owned + n_ghost) in the order of their
+ * dem_world_unpack_particle(..., 1) calls (ghost position k = storage index
+ * n_owned + k) until dem_world_clear_ghosts.  No list build (the spatial sort
+ * permutes owned particles only), insertion (inlets, fill, add_particles),
+ * owned unpack (ghost = 0), removal (outlets, remove_particle) or restore
+ * changes their relative order: the ghost block is shifted as a whole when
+ * the owned count changes, so the positions k stay valid.
+ * Verlet scheme for a decomposed run (tests/dem/test_decomp.c): per step
+ * step_drift on every rank; stale = OR over ranks of dem_world_list_stale;
+ * if stale: migrate, clear_ghosts, send as ghosts the owned particles within
+ * r_i + r_max + skin (dem_world_skin, r_max the global largest radius) of the
+ * neighbour's region and remember their ids in order, then
+ * dem_world_invalidate_list; else send only the states (x, v, omega) of the
+ * same particles in the same order with dem_world_set_ghost_states (look them
+ * up by id: owned particles are re-sorted at list builds); then step_forces.
+ * Ranks must use the same dt and skin; an owned particle may stray outside
+ * its region between rebuilds (migration happens at rebuilds only).  A
+ * periodic wrap of positions happens at list builds only.
  * Contact history waits in a pending store keyed by ids until the next list
  * build; if it holds the same pair twice, the entry stored first wins (e.g.
  * a particle migrating in before dem_world_clear_ghosts: the history packed
@@ -331,6 +372,16 @@ dem_status dem_world_pack_ghost(const dem_world *w, size_t index, void *buf, siz
  *  stored forces of the other particles (no new first force evaluation). */
 dem_status dem_world_unpack_particle(dem_world *w, const void *buf, size_t size, int ghost);
 dem_status dem_world_clear_ghosts(dem_world *w);
+/** Added: set x, v and omega of the ghosts at ghost positions [first,
+ *  first + count) from xvw (9 doubles per ghost: x0 x1 x2 v0 v1 v2 w0 w1 w2)
+ *  WITHOUT invalidating the neighbour list or touching the contact history,
+ *  the forces, the displacement references or the storage order: the cheap
+ *  ghost refresh between list builds (the ghost set stays that of the last
+ *  build; the caller's rebuild decision, dem_world_list_stale, must cover
+ *  the ghosts' displacement).  All or nothing: DEM_ERR_RANGE if the range
+ *  exceeds the n_ghost ghosts present, DEM_ERR_NAN for a non-finite value,
+ *  DEM_ERR_ARG for xvw NULL with count > 0.  count = 0 is a no-op. */
+dem_status dem_world_set_ghost_states(dem_world *w, size_t first, size_t count, const double *xvw);
 
 #ifdef __cplusplus
 }
