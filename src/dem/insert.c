@@ -503,7 +503,9 @@ dem_status dem_inlets_run(dem_world *w)
             for (int tr = 0; tr < DEM_INLET_TRIES && !ok; ++tr) {
                 polygon_point(w, in, x);
                 ok = clear_of_walls(w, x, r);
-                for (size_t i = 0; i < w->n && ok; ++i) {
+                /* ghosts too: in a decomposed run the inserting rank must
+                   not place a particle onto one owned by a neighbour */
+                for (size_t i = 0; i < w->n + w->ng && ok; ++i) {
                     const double *y = w->x + 3 * i;
                     double d0 = x[0] - y[0], d1 = x[1] - y[1], d2 = x[2] - y[2], s = r + w->rad[i];
                     if (d0 * d0 + d1 * d1 + d2 * d2 < s * s) ok = 0;

@@ -90,11 +90,17 @@ int main(int argc, char *argv[])
     {
         writeLastGood("floating-point exception (SIGFPE) in the fluid solution");
     }
+    // serial only: in a decomposed run the other processors would wait in
+    // the fluid solution's communication; there OpenFOAM's own SIGFPE
+    // handler stops the run (the last written time is the restart point)
     struct sigaction fpeAction, fpeDefault;
     fpeAction.sa_handler = fpeHandler;
     sigemptyset(&fpeAction.sa_mask);
     fpeAction.sa_flags = 0;
-    sigaction(SIGFPE, &fpeAction, &fpeDefault);
+    if (!Pstream::parRun())
+    {
+        sigaction(SIGFPE, &fpeAction, &fpeDefault);
+    }
 
     while (runTime.run())
     {
@@ -181,7 +187,10 @@ int main(int argc, char *argv[])
         runTime.printExecutionTime(Info);
         dem.progress(!runTime.run());
     }
-    sigaction(SIGFPE, &fpeDefault, nullptr);
+    if (!Pstream::parRun())
+    {
+        sigaction(SIGFPE, &fpeDefault, nullptr);
+    }
 
     Info<< "End\n" << endl;
 

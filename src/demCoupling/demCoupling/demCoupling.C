@@ -1,4 +1,5 @@
 #include "demCoupling.H"
+#include "demCouplingTools.H"
 #include "OStringStream.H"
 #include <limits>
 #include "fvc.H"
@@ -6,11 +7,13 @@
 #include "emptyPolyPatch.H"
 #include "wallPolyPatch.H"
 #include "cyclicPolyPatch.H"
+#include "processorPolyPatch.H"
 #include "mathematicalConstants.H"
 #include "OSspecific.H"
 #include <fstream>
 
 using namespace Foam::constant::mathematical;
+using namespace Foam::demTools;
 
 // * * * * * * * * * * * * * * * * Helpers * * * * * * * * * * * * * * * * //
 
@@ -73,14 +76,48 @@ namespace
         return types;
     }
 
-    Foam::vector toVec(const double* a, const Foam::label i)
+}
+
+
+namespace
+{
+    // Largest value a distribution draws (normal: mean + 3 sd)
+    Foam::scalar distributionMax(const dem_distribution& d)
     {
-        return Foam::vector(a[3*i], a[3*i+1], a[3*i+2]);
+        switch (d.kind)
+        {
+            case DEM_DIST_UNIFORM: return d.b;
+            case DEM_DIST_NORMAL: return d.a + 3*d.b;
+            case DEM_DIST_DISCRETE:
+            {
+                Foam::scalar m = 0;
+                for (size_t k = 0; k < d.n; ++k) m = Foam::max(m, d.values[k]);
+                return m;
+            }
+            default: return d.a;
+        }
     }
 
-    void setVec(double* a, const Foam::label i, const Foam::vector& v)
+    // The lists of all processors joined in processor order (decomposed
+    // runs); the list itself when serial
+    template<class T>
+    Foam::List<T> joinAll(const Foam::UList<T>& mine)
     {
-        a[3*i] = v.x(); a[3*i+1] = v.y(); a[3*i+2] = v.z();
+        using namespace Foam;
+        if (!Pstream::parRun()) return List<T>(mine);
+        List<List<T>> all(Pstream::nProcs());
+        all[Pstream::myProcNo()] = mine;
+        Pstream::gatherList(all);
+        Pstream::scatterList(all);
+        label n = 0;
+        for (const List<T>& l : all) n += l.size();
+        List<T> joined(n);
+        n = 0;
+        for (const List<T>& l : all)
+        {
+            for (const T& x : l) joined[n++] = x;
+        }
+        return joined;
     }
 }
 
@@ -187,13 +224,13 @@ Foam::demCoupling::demCoupling
     startTime_ = mesh.time().value();
     injectParticleNaN_ = injectedStep("particleNaN");
 
-    if (Pstream::parRun())
-    {
-        FatalErrorInFunction
-            << "demFoam runs serial only for now: the DEM particle ownership "
-            << "across processors (ghosts, migration) is not implemented in "
-            << "the coupling; run without -parallel" << exit(FatalError);
-    }
+    periodic_ = false;
+    boxLo_ = Zero;
+    boxHi_ = Zero;
+    inletRadius_ = 0;
+    ghostSize_ = 0;
+    tComm_ = 0;
+    sendReorder_ = -1;
 
     const word scheme(dict_.getOrDefault<word>("dragScheme", "perParticle"));
     if (scheme == "cellMean")
@@ -232,26 +269,10 @@ Foam::demCoupling::demCoupling
     addWalls();
     addOutletsAndInlets();
 
-    const fileName state
-    (
-        mesh.time().timePath()/"uniform"/"demState.bin"
-    );
-    if (isFile(state))
+    if (!restoreState(mesh.time().timePath()/"uniform"))
     {
-        Info<< "demCoupling: restoring the DEM state from " << state << endl;
-        world_.check
-        (
-            dem_world_restore(world_, state.c_str()),
-            "dem_world_restore"
-        );
-        const fileName cpl(state.path()/"demCouplingState.bin");
-        if (isFile(cpl))
-        {
-            readCouplingState(cpl);
-        }
-    }
-    else
-    {
+        // decomposed: every processor creates (and settles) the whole set,
+        // then keeps the particles in its cells
         addInitialParticles();
         checkInitialState();
         if (checkOnly) return;
@@ -260,9 +281,12 @@ Foam::demCoupling::demCoupling
         {
             const int64_t n = int64_t(tSettle/demDt_ + 0.5);
             Info<< "demCoupling: settling " << n << " DEM steps ("
-                << tSettle << " s) without fluid" << endl;
+                << tSettle << " s) without fluid"
+                << (Pstream::parRun() ? " (every processor the whole set)" : "")
+                << endl;
             world_.step(n, "dem_world_step (settling)");
         }
+        distributeByCell();
     }
     if (checkOnly) return;
 
@@ -277,7 +301,15 @@ Foam::demCoupling::demCoupling
             << failure_.c_str() << " (before the first step)" << exit(FatalError);
     }
 
-    Info<< "demCoupling: " << dem_world_count(world_) << " particles, "
+    Info<< "demCoupling: "
+        << returnReduce(label(dem_world_count(world_)), sumOp<label>())
+        << " particles"
+        << (
+               Pstream::parRun()
+             ? " on " + Foam::name(Pstream::nProcs()) + " processors"
+             : std::string()
+           ).c_str()
+        << ", "
         << "formulation " << dict_.get<word>("formulation")
         << ", drag " << dict_.get<word>("dragModel")
         << (cellMeanDrag_ ? " (cell-mean)" : " (per particle)")
@@ -341,9 +373,16 @@ void Foam::demCoupling::configureWorld()
     // cyclic patches -> periodic axes (translational, axis-aligned)
     for (const polyPatch& pp : mesh_.boundaryMesh())
     {
-        if (isA<cyclicPolyPatch>(pp) && pp.size())
+        // (a decomposed cyclic may have no faces on this processor: the
+        // normal from the sum over all of them; all faces are parallel)
+        if
+        (
+            isA<cyclicPolyPatch>(pp)
+         && returnReduce(pp.size(), sumOp<label>())
+        )
         {
-            const vector n = pp.faceAreas()[0]/mag(pp.faceAreas()[0]);
+            vector n = gSum(pp.faceAreas());
+            n /= mag(n);
             const direction k = findMax(cmptMag(n));
             if (mag(n[k]) < 1 - 1e-6)
             {
@@ -356,6 +395,9 @@ void Foam::demCoupling::configureWorld()
             c.periodic[k] = 1;
             c.domain_lo[k] = bb.min()[k];
             c.domain_hi[k] = bb.max()[k];
+            periodic_[k] = true;
+            boxLo_[k] = bb.min()[k];
+            boxHi_[k] = bb.max()[k];
             Info<< "demCoupling: cyclic patch " << pp.name()
                 << " -> DEM periodic along " << vector::componentNames[k]
                 << endl;
@@ -363,6 +405,29 @@ void Foam::demCoupling::configureWorld()
     }
 
     c.skin = d.getOrDefault<scalar>("skin", -1);
+    if (Pstream::parRun() && c.skin <= 0)
+    {
+        // the core's automatic skin (0.2 of the largest diameter present)
+        // could differ between processors; the decomposed Verlet scheme
+        // needs one skin: 0.2 of the largest diameter in demProperties
+        scalar dMax = 0;
+        for (const word& scope : {word("initialParticles"), word("inlets")})
+        {
+            if (!dict_.isDict(scope)) continue;
+            for (const entry& e : dict_.subDict(scope))
+            {
+                if (!e.isDict()) continue;
+                PtrList<scalarField> store;
+                dMax = max(dMax, distributionMax(readDistribution(e.dict(), "diameter", store)));
+            }
+        }
+        if (dMax > 0)
+        {
+            c.skin = 0.2*dMax;
+            Info<< "demCoupling: decomposed: dem/skin " << c.skin
+                << " m (0.2 of the largest diameter)" << endl;
+        }
+    }
     c.max_dt_fraction = d.getOrDefault<scalar>("maxDtFraction", c.max_dt_fraction);
     c.max_overlap_ratio =
         d.getOrDefault<scalar>("maxOverlapRatio", c.max_overlap_ratio);
@@ -450,19 +515,27 @@ void Foam::demCoupling::addWalls()
         dict_.getOrDefault<wordList>("wallPatches", wordList())
     );
 
+    // decomposed: every processor gets the walls of all (a particle near a
+    // processor boundary may touch a wall face of the neighbour)
     for (const polyPatch& pp : mesh_.boundaryMesh())
     {
-        if (!pp.size()) continue;
+        if (isA<processorPolyPatch>(pp)) continue;
+        if (!returnReduce(pp.size(), sumOp<label>())) continue;
 
         if (isA<emptyPolyPatch>(pp))
         {
             // one plane per distinct face plane (front and back of 2-D meshes)
+            const List<vector> nAll
+            (
+                joinAll(vectorField(pp.faceAreas()/mag(pp.faceAreas())))
+            );
+            const List<point> cAll(joinAll(pp.faceCentres()));
             List<vector> ns;
             List<point> ps;
-            forAll(pp, i)
+            forAll(nAll, i)
             {
-                const vector n = pp.faceAreas()[i]/mag(pp.faceAreas()[i]);
-                const point& c = pp.faceCentres()[i];
+                const vector& n = nAll[i];
+                const point& c = cAll[i];
                 bool known = false;
                 forAll(ns, k)
                 {
@@ -544,6 +617,20 @@ void Foam::demCoupling::addWalls()
                         tris.append(ci); tris.append(int(a)); tris.append(int(b));
                     }
                 }
+            }
+            if (Pstream::parRun())
+            {
+                // vertex indices of each processor shifted by the vertices
+                // of the processors before it
+                labelList nv(Pstream::nProcs(), 0);
+                nv[Pstream::myProcNo()] = verts.size()/3;
+                Pstream::gatherList(nv);
+                Pstream::scatterList(nv);
+                label shift = 0;
+                for (label r = 0; r < Pstream::myProcNo(); ++r) shift += nv[r];
+                for (int& t : tris) t += int(shift);
+                verts = joinAll(verts);
+                tris = joinAll(tris);
             }
             int id;
             world_.check
@@ -642,7 +729,7 @@ void Foam::demCoupling::addOutletsAndInlets()
         const dictionary& d = e.dict();
         const word patchName(d.get<word>("patch"));
         const label patchi = bm.findPatchID(patchName);
-        if (patchi < 0 || !bm[patchi].size())
+        if (patchi < 0 || !returnReduce(bm[patchi].size(), sumOp<label>()))
         {
             FatalIOErrorInFunction(d)
                 << "inlets/" << e.keyword() << "/patch " << patchName
@@ -651,14 +738,16 @@ void Foam::demCoupling::addOutletsAndInlets()
         }
         const polyPatch& pp = bm[patchi];
         // polygon: convex hull of the patch points in the patch plane
-        vector n = sum(pp.faceAreas());
+        // (decomposed: of the points of all processors)
+        vector n = gSum(pp.faceAreas());
         n /= mag(n);
-        const point c0 = sum(pp.faceCentres())/pp.size();
-        vector e1 = pp.localPoints()[0] - c0;
+        const point c0 =
+            gSum(pp.faceCentres())/returnReduce(pp.size(), sumOp<label>());
+        const pointField lp(joinAll(pp.localPoints()));
+        vector e1 = lp[0] - c0;
         e1 -= (e1 & n)*n;
         e1 /= mag(e1);
         const vector e2 = n ^ e1;
-        const pointField& lp = pp.localPoints();
         List<vector2D> p2(lp.size());
         forAll(lp, i)
         {
@@ -670,15 +759,7 @@ void Foam::demCoupling::addOutletsAndInlets()
         t.density = readDistribution(d, "density", store);
         t.material = materialId(d.get<word>("material"), d);
 
-        // largest diameter of the distribution
-        scalar dMax = t.diameter.a;
-        switch (t.diameter.kind)
-        {
-            case DEM_DIST_UNIFORM: dMax = t.diameter.b; break;
-            case DEM_DIST_NORMAL: dMax = t.diameter.a + 3*t.diameter.b; break;
-            case DEM_DIST_DISCRETE: dMax = max(store[0]); break;
-            default: break;
-        }
+        const scalar dMax = distributionMax(t.diameter);
 
         // polygon: convex hull of the patch points in the patch plane,
         // moved into the domain by 0.6 of the largest diameter so that new
@@ -723,6 +804,22 @@ void Foam::demCoupling::addOutletsAndInlets()
             FatalIOErrorInFunction(d)
                 << "rateType " << kind << " in " << d.name()
                 << ": allowed number, mass" << exit(FatalIOError);
+        }
+        // decomposed: the master inserts (new particles migrate to their
+        // processor at the end of the fluid step); ghosts near the inlet
+        // are sent to it for the overlap test of the insertion
+        inletRadius_ = max(inletRadius_, 0.5*dMax);
+        if (!Pstream::master()) continue;
+        if (Pstream::parRun())
+        {
+            boundBox ib(boundBox::invertedBox);
+            forAll(hull, k)
+            {
+                ib.add(point(poly[3*k], poly[3*k+1], poly[3*k+2]));
+            }
+            ib.min() -= vector::one*dMax;
+            ib.max() += vector::one*dMax;
+            inletBoxes_.append(ib);
         }
         int id;
         world_.check
@@ -913,7 +1010,7 @@ Foam::label Foam::demCoupling::subSteps(const scalar dt) const
 
 Foam::label Foam::demCoupling::lostTotal() const
 {
-    return lostUnknown_ + sum(lostPerPatch_);
+    return returnReduce(lostUnknown_ + sum(lostPerPatch_), sumOp<label>());
 }
 
 
@@ -935,7 +1032,7 @@ void Foam::demCoupling::locateAll()
             for (label k = old; k < hostById_.size(); ++k) hostById_[k] = -1;
         }
         label exitFace = -1;
-        const label c = locator_.locate(toVec(a.x, i), hostById_[id], exitFace);
+        const label c = locator_.locate(wrapped(a, i), hostById_[id], exitFace);
         hostById_[id] = c;
         if (c < 0)
         {
@@ -947,11 +1044,33 @@ void Foam::demCoupling::locateAll()
         }
     }
 
+    // decomposed: those in another processor's cells move there
+    boolList taken(leaving.size(), false);
+    if (Pstream::parRun())
+    {
+        migrate(leaving, taken);
+        a = world_.arrays();
+    }
+
     // remove from the highest index down (removal swaps with the last)
     label nOut = 0, nLost = 0;
     for (label k = leaving.size() - 1; k >= 0; --k)
     {
-        const label patchi = leavingPatch[k];
+        if (taken[k])
+        {
+            world_.check
+            (
+                dem_world_remove_particle(world_, size_t(leaving[k]), -1),
+                "dem_world_remove_particle"
+            );
+            continue;
+        }
+        label patchi = leavingPatch[k];
+        if (patchi >= 0 && isA<processorPolyPatch>(mesh_.boundaryMesh()[patchi]))
+        {
+            // through a processor boundary into no processor's cells
+            patchi = -1;
+        }
         const label o = (patchi >= 0 ? outletPatches_.find(patchi) : -1);
         if (o >= 0)
         {
@@ -962,12 +1081,20 @@ void Foam::demCoupling::locateAll()
             ++nLost;
             if (patchi >= 0) ++lostPerPatch_[patchi]; else ++lostUnknown_;
             const vector x(toVec(a.x, leaving[k]));
-            WarningInFunction
-                << "particle " << label(a.id[leaving[k]]) << " at " << x
+            OStringStream msg;
+            msg << "particle " << label(a.id[leaving[k]]) << " at " << x
                 << " left the mesh through "
                 << (patchi >= 0 ? mesh_.boundaryMesh()[patchi].name() : word("an unknown patch"))
-                << ", which is not an outlet; removed and counted as lost"
-                << endl;
+                << ", which is not an outlet; removed and counted as lost";
+            if (Pstream::parRun())
+            {
+                // (Warning prints on the master only)
+                Pout<< "--> FOAM Warning : " << msg.str().c_str() << endl;
+            }
+            else
+            {
+                WarningInFunction << msg.str().c_str() << endl;
+            }
         }
         world_.check
         (
@@ -978,15 +1105,18 @@ void Foam::demCoupling::locateAll()
             "dem_world_remove_particle"
         );
     }
+    reduce(nOut, sumOp<label>());
+    reduce(nLost, sumOp<label>());
     if (nOut + nLost > 0)
     {
         Info<< "demCoupling: " << nOut << " particles left through outlets, "
             << nLost << " lost" << endl;
     }
-    if (nLost && lostTotal() > maxLost_ && failure_.empty())
+    const label lost = nLost ? lostTotal() : 0;
+    if (nLost && lost > maxLost_ && failure_.empty())
     {
         OStringStream os;
-        os  << lostTotal() << " particles lost in total (left the mesh through"
+        os  << lost << " particles lost in total (left the mesh through"
             << " patches that are not in outletPatches, see the warnings"
             << " above); constant/demProperties allows maxLostParticles "
             << maxLost_ << ". Make the patch an outlet (outletPatches), fix"
@@ -1016,35 +1146,45 @@ void Foam::demCoupling::writeRemovedRecords()
         dem_world_removed_records(world_, &rec, &nRec),
         "dem_world_removed_records"
     );
-    if (nRec && Pstream::master())
+    OStringStream lines;
+    lines.precision(10);
+    for (size_t k = 0; k < nRec; ++k)
     {
-        const fileName dir
-        (
-            mesh_.time().globalPath()/"postProcessing"/"demOutlets"
-           /mesh_.time().timeName(mesh_.time().startTime().value())
-        );
-        mkDir(dir);
-        const fileName file(dir/"removed.dat");
-        const bool fresh = !isFile(file);
-        std::ofstream os(file.c_str(), std::ios::app);
-        if (fresh)
-        {
-            os << "# time id d rho outletPatch\n";
-        }
-        os.precision(10);
-        for (size_t k = 0; k < nRec; ++k)
-        {
-            const label o = outletIds_.find(rec[k].outlet);
-            const word patch =
-                o >= 0
-              ? mesh_.boundaryMesh()[outletPatches_[o]].name()
-              : word("none");
-            os  << mesh_.time().value() << ' ' << rec[k].id << ' '
-                << rec[k].diameter << ' ' << rec[k].density << ' '
-                << patch << '\n';
-        }
+        const label o = outletIds_.find(rec[k].outlet);
+        const word patch =
+            o >= 0
+          ? mesh_.boundaryMesh()[outletPatches_[o]].name()
+          : word("none");
+        lines
+            << mesh_.time().value() << ' ' << label(rec[k].id) << ' '
+            << rec[k].diameter << ' ' << rec[k].density << ' '
+            << patch << nl;
     }
     dem_world_clear_removed_records(world_);
+
+    // decomposed: the master writes the records of all processors
+    List<string> all(Pstream::nProcs());
+    all[Pstream::myProcNo()] = lines.str();
+    Pstream::gatherList(all);
+    if (!Pstream::master()) return;
+
+    const fileName dir
+    (
+        mesh_.time().globalPath()/"postProcessing"/"demOutlets"
+       /mesh_.time().timeName(mesh_.time().startTime().value())
+    );
+    mkDir(dir);
+    const fileName file(dir/"removed.dat");
+    const bool fresh = !isFile(file);
+    std::ofstream os(file.c_str(), std::ios::app);
+    if (fresh)
+    {
+        os << "# time id d rho outletPatch\n";
+    }
+    for (const string& l : all)
+    {
+        os << l;
+    }
 }
 
 
@@ -1060,7 +1200,7 @@ void Foam::demCoupling::computeWeights()
         wStart_[i] = wCells_.size();
         voidage_->addWeights
         (
-            toVec(a.x, i), a.radius[i], host_[i], wCells_, wValues_
+            wrapped(a, i), a.radius[i], host_[i], wCells_, wValues_
         );
     }
     wStart_[n] = wCells_.size();
@@ -1087,7 +1227,8 @@ void Foam::demCoupling::computeVoidage()
             mom[wCells_[k]] += wValues_[k]*Vp*v;
         }
     }
-    solidVolumeMesh_ = sum(solid);
+    solidVolumeMesh_ = gSum(solid);
+    reduce(solidVolumeParticles_, sumOp<scalar>());
 
     epsRaw_.primitiveFieldRef() = 1.0 - solid/V;
     eps_.primitiveFieldRef() = max(epsRaw_.primitiveField(), epsMin_);
@@ -1115,6 +1256,7 @@ void Foam::demCoupling::evolve
 {
     const auto tEvolve0 = std::chrono::steady_clock::now();
     const scalar tDem0 = tDem_;
+    const scalar tComm0 = tComm_;
 
     const scalar dt = mesh_.time().deltaTValue();
     const label nDem = subSteps(dt);
@@ -1285,15 +1427,22 @@ void Foam::demCoupling::evolve
                 a.v[0] = std::numeric_limits<double>::quiet_NaN();
             }
             const auto t0 = std::chrono::steady_clock::now();
-            const dem_status st = world_.tryStep(m);
+            const scalar tCommStep0 = tComm_;
+            const dem_status st =
+                Pstream::parRun() ? stepDecomposed(m) : world_.tryStep(m);
             tDem_ += std::chrono::duration<scalar>
             (
                 std::chrono::steady_clock::now() - t0
-            ).count();
+            ).count()
+              - (tComm_ - tCommStep0);
             if (st != DEM_OK)
             {
-                failure_ = std::string("DEM core: ") + dem_status_string(st)
-                  + ": " + world_.lastError();
+                // (decomposed: set by stepDecomposed, naming the processor)
+                if (failure_.empty())
+                {
+                    failure_ = std::string("DEM core: ")
+                      + dem_status_string(st) + ": " + world_.lastError();
+                }
                 ++nSteps_;
                 return;
             }
@@ -1380,6 +1529,16 @@ void Foam::demCoupling::evolve
             wCell[c] += w;
         }
     }
+    if (Pstream::parRun())
+    {
+        reduce(sumParticle, sumOp<vector>());
+        reduce(sumDrag, sumOp<vector>());
+        reduce(sumGradP, sumOp<vector>());
+        reduce(sumTau, sumOp<vector>());
+        reduce(sumMagParticle, sumOp<scalar>());
+        reduce(etaSum, sumOp<scalar>());
+        reduce(etaN, sumOp<label>());
+    }
     if (nSeen != n)
     {
         FatalErrorInFunction
@@ -1411,6 +1570,7 @@ void Foam::demCoupling::evolve
         sumFluid += S*V[c];
         eta_[c] = wCell[c] > 0 ? etaCell[c]/wCell[c] : 0;
     }
+    reduce(sumFluid, sumOp<vector>());
     sumDrag_ = sumDrag;
     sumGradP_ = sumGradP;
     sumTau_ = sumTau;
@@ -1431,7 +1591,7 @@ void Foam::demCoupling::evolve
         (
             std::chrono::steady_clock::now() - tEvolve0
         ).count()
-      - (tDem_ - tDem0);
+      - (tDem_ - tDem0) - (tComm_ - tComm0);
 
     report(false);
 }

@@ -9,7 +9,8 @@
 void Foam::demCoupling::report(const bool full) const
 {
     const scalar rel = balanceFluid_/balanceParticle_;
-    Info<< "demCoupling: particles " << label(dem_world_count(world_))
+    Info<< "demCoupling: particles "
+        << returnReduce(label(dem_world_count(world_)), sumOp<label>())
         << ", DEM steps " << nSubCycles_
         << ", momentum balance: fluid " << balanceFluidVec_
         << " particles " << balanceParticleVec_
@@ -49,17 +50,26 @@ void Foam::demCoupling::report(const bool full) const
             << mesh_.boundaryMesh()[outletPatches_[k]].name() << ": "
             << cnt << " particles, " << mass << " kg" << endl;
     }
-    forAll(lostPerPatch_, patchi)
+    // summed over the processors (the patches before the processor
+    // patches are the same on all; exits through processor patches are
+    // booked as unknown)
+    labelList lost
+    (
+        SubList<label>(lostPerPatch_, mesh_.boundaryMesh().nNonProcessor())
+    );
+    Pstream::listCombineGather(lost, plusEqOp<label>());
+    forAll(lost, patchi)
     {
-        if (lostPerPatch_[patchi])
+        if (lost[patchi])
         {
             Info<< "demCoupling: lost through "
                 << mesh_.boundaryMesh()[patchi].name() << ": "
-                << lostPerPatch_[patchi] << endl;
+                << lost[patchi] << endl;
         }
     }
     Info<< "demCoupling: lost particles in total " << lostTotal()
-        << " (global searches " << locator_.nGlobal() << ")" << endl;
+        << " (global searches "
+        << returnReduce(locator_.nGlobal(), sumOp<label>()) << ")" << endl;
 }
 
 
@@ -72,8 +82,8 @@ Foam::label Foam::demCoupling::outletTotal(const label k, scalar& mass) const
         dem_world_outlet_totals(world_, outletIds_[k], &cnt, &m),
         "dem_world_outlet_totals"
     );
-    mass = m;
-    return label(cnt);
+    mass = returnReduce(scalar(m), sumOp<scalar>());
+    return returnReduce(label(cnt), sumOp<label>());
 }
 
 
@@ -88,8 +98,7 @@ void Foam::demCoupling::write() const
     passiveParticleCloud cloud(mesh_, cloudName, IDLList<passiveParticle>());
     for (label i = 0; i < n; ++i)
     {
-        const vector x(a.x[3*i], a.x[3*i+1], a.x[3*i+2]);
-        cloud.addParticle(new passiveParticle(mesh_, x, host_[i]));
+        cloud.addParticle(new passiveParticle(mesh_, wrapped(a, i), host_[i]));
     }
 
     List<int> coord(n, 0);
@@ -165,7 +174,7 @@ void Foam::demCoupling::write() const
     // DEM state for restarts
     const fileName dir(mesh_.time().timePath()/"uniform");
     mkDir(dir);
-    const fileName state(dir/"demState.bin");
+    const fileName state(stateFile(dir));
     world_.check(dem_world_save(world_, state.c_str()), "dem_world_save");
     writeCouplingState(dir/"demCouplingState.bin");
 }
@@ -197,17 +206,25 @@ void Foam::demCoupling::writeCouplingState(const fileName& file) const
 }
 
 
-void Foam::demCoupling::readCouplingState(const fileName& file)
+void Foam::demCoupling::readCouplingState
+(
+    const fileName& file,
+    const bool serialState
+)
 {
     std::ifstream is(file.c_str(), std::ios::binary);
     char magic[8];
     int64_t n = -1;
     is.read(magic, sizeof magic);
     is.read(reinterpret_cast<char*>(&n), sizeof n);
+    // a serial state restarted decomposed: the per-cell fluid velocity of
+    // the last step does not fit this processor's cells; it is dropped (the
+    // extra forces' du/dt restarts from the next step)
+    const bool otherMesh = serialState && n != 0 && n != mesh_.nCells();
     if
     (
         !is.good() || std::string(magic, 7) != "DEMCPL2"
-     || (n != 0 && n != mesh_.nCells())
+     || (n != 0 && n != mesh_.nCells() && !otherMesh)
     )
     {
         FatalErrorInFunction
@@ -222,6 +239,13 @@ void Foam::demCoupling::readCouplingState(const fileName& file)
     if (n)
     {
         is.read(reinterpret_cast<char*>(Uprev_.data()), 3*n*sizeof(scalar));
+    }
+    if (otherMesh)
+    {
+        Uprev_.clear();
+        indexUprev_ = -2;
+        Info<< "demCoupling: " << file << " is of the serial mesh: the fluid "
+            << "velocity of the last step is not carried over" << endl;
     }
     if (!is.good())
     {

@@ -117,6 +117,23 @@ std::string Foam::demCoupling::nonFinite
 {
     const fvMesh& mesh = U.mesh();
     OStringStream os;
+    // decomposed: the first processor with a non-finite value tells all
+    auto agree = [&](const std::string& mine)
+    {
+        if (!Pstream::parRun()) return mine;
+        List<string> all(Pstream::nProcs());
+        all[Pstream::myProcNo()] = mine;
+        Pstream::gatherList(all);
+        Pstream::scatterList(all);
+        forAll(all, r)
+        {
+            if (!all[r].empty())
+            {
+                return all[r] + " (processor " + std::to_string(r) + ")";
+            }
+        }
+        return std::string();
+    };
     forAll(U, c)
     {
         const vector& u = U[c];
@@ -124,16 +141,16 @@ std::string Foam::demCoupling::nonFinite
         {
             os  << "non-finite fluid velocity " << U.name() << " = " << u
                 << " in cell " << c << " at " << mesh.C()[c];
-            return os.str();
+            return agree(os.str());
         }
         if (!std::isfinite(p[c]))
         {
             os  << "non-finite pressure " << p.name() << " = " << p[c]
                 << " in cell " << c << " at " << mesh.C()[c];
-            return os.str();
+            return agree(os.str());
         }
     }
-    return "";
+    return agree("");
 }
 
 
@@ -154,10 +171,12 @@ void Foam::demCoupling::progress(const bool force)
     (
         std::chrono::steady_clock::now() - wallStart_
     ).count();
-    const bool due =
+    bool due =
         force
      || (progressSteps_ > 0 && nSteps_ % progressSteps_ == 0)
      || (progressSteps_ == 0 && wall - wallLastProgress_ >= progressInterval_);
+    // decomposed: the master's clock decides (the line needs all processors)
+    Pstream::scatter(due);
     if (!due) return;
     wallLastProgress_ = wall;
 
@@ -170,28 +189,49 @@ void Foam::demCoupling::progress(const bool force)
 
     dem_stats st;
     world_.check(dem_world_stats(world_, &st), "dem_world_stats");
+    const label nAll =
+        returnReduce(label(dem_world_count(world_)), sumOp<label>());
+    // (decomposed: every processor created the initial particles, the
+    // master alone inserts; its count is the total)
+    label nInserted = label(st.inserted);
+    Pstream::scatter(nInserted);
+    const scalar maxOverlap =
+        returnReduce(scalar(st.max_overlap_ratio), maxOp<scalar>());
+    const label lost = lostTotal();
+    List<label> outCounts(outletPatches_.size());
+    forAll(outletPatches_, k)
+    {
+        scalar mass = 0;
+        outCounts[k] = outletTotal(k, mass);
+    }
 
-    const scalar total = max(tDem_ + tCoupling_ + tFluid_, VSMALL);
+    const scalar tComm = returnReduce(tComm_, maxOp<scalar>());
+    const scalar total = max(tDem_ + tCoupling_ + tFluid_ + tComm_, VSMALL);
     OStringStream os;
     os  << "progress: t = " << t << " s of " << tEnd << " ("
         << label(100*(t - startTime_)/max(tEnd - startTime_, VSMALL))
         << " %), wall " << hms(wall).c_str() << ", to the end ~"
         << hms(eta).c_str()
-        << ", particles " << label(dem_world_count(world_))
-        << " (inserted " << label(st.inserted) << ", removed";
+        << ", particles " << nAll
+        << " (inserted " << nInserted << ", removed";
     forAll(outletPatches_, k)
     {
-        scalar mass = 0;
         os  << " " << mesh_.boundaryMesh()[outletPatches_[k]].name() << " "
-            << outletTotal(k, mass);
+            << outCounts[k];
     }
     if (outletPatches_.empty()) os << " 0";
-    os  << ", lost " << lostTotal() << ")"
-        << ", max overlap " << 0.001*std::round(1e5*st.max_overlap_ratio)
+    os  << ", lost " << lost << ")"
+        << ", max overlap " << 0.001*std::round(1e5*maxOverlap)
         << " % of d"
         << ", time DEM " << label(100*tDem_/total + 0.5)
         << " % coupling " << label(100*tCoupling_/total + 0.5)
         << " % fluid " << label(100*tFluid_/total + 0.5) << " %";
+    if (Pstream::parRun())
+    {
+        os  << " communication " << label(100*tComm_/total + 0.5)
+            << " % (most on one processor " << label(100*tComm/total + 0.5)
+            << " %)";
+    }
     Info<< os.str().c_str() << endl;
 }
 

@@ -15,6 +15,7 @@ Description
 \*---------------------------------------------------------------------------*/
 
 #include "demCoupling.H"
+#include "demCouplingTools.H"
 #include "extraForce.H"
 #include "OStringStream.H"
 #include <cmath>
@@ -24,6 +25,7 @@ namespace
 {
 
 using namespace Foam;
+using Foam::demTools::toVec;
 
 enum class kind { Scalar, Label, Word, Bool, Vector, List, Dict, Distribution };
 
@@ -52,12 +54,6 @@ keySpec choice(const char* n, const wordList& words)
 }
 
 const double inf = HUGE_VAL;
-
-
-Foam::vector toVec(const double* a, const label i)
-{
-    return Foam::vector(a[3*i], a[3*i+1], a[3*i+2]);
-}
 
 
 std::string numText(const scalar x)
@@ -764,11 +760,13 @@ void Foam::demCoupling::checkInitialState()
     dem_arrays a = world_.arrays();
     const label n = label(a.n_owned);
 
-    // centres inside the mesh
+    // centres inside the mesh (decomposed: in some processor's cells; every
+    // processor holds the whole initial set here)
+    const labelList owner(cellOwners());
     label nOut = 0, firstOut = -1;
     for (label i = 0; i < n; ++i)
     {
-        if (mesh_.findCell(toVec(a.x, i), polyMesh::FACE_DIAG_TRIS) < 0)
+        if (owner[i] < 0)
         {
             if (firstOut < 0) firstOut = i;
             ++nOut;

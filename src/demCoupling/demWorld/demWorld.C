@@ -61,14 +61,37 @@ dem_arrays Foam::demWorld::arrays() const
 }
 
 
+namespace
+{
+    // Call into the core with floating-point traps suspended
+    template<class Call>
+    dem_status withoutTraps(const Call& call)
+    {
+        std::fenv_t env;
+        std::feholdexcept(&env);            // save and suspend traps
+        const dem_status s = call();
+        std::feclearexcept(FE_ALL_EXCEPT);
+        std::fesetenv(&env);                // restore OpenFOAM's traps
+        return s;
+    }
+}
+
+
 dem_status Foam::demWorld::tryStep(const int64_t nsteps)
 {
-    std::fenv_t env;
-    std::feholdexcept(&env);            // save and suspend traps
-    const dem_status s = dem_world_step(w_, nsteps);
-    std::feclearexcept(FE_ALL_EXCEPT);
-    std::fesetenv(&env);                // restore OpenFOAM's traps
-    return s;
+    return withoutTraps([&]{ return dem_world_step(w_, nsteps); });
+}
+
+
+dem_status Foam::demWorld::tryDrift()
+{
+    return withoutTraps([&]{ return dem_world_step_drift(w_); });
+}
+
+
+dem_status Foam::demWorld::tryForces()
+{
+    return withoutTraps([&]{ return dem_world_step_forces(w_); });
 }
 
 
