@@ -635,3 +635,11 @@ void dem_world_clear_removed_records(dem_world *w)
 {
     if (w) w->nrec = 0;
 }
+
+dem_status dem_world_clear_inlets(dem_world *w)
+{
+    if (!w) return DEM_ERR_ARG;
+    for (int i = 0; i < w->ninlets; ++i) free(w->inlets[i].poly);
+    w->ninlets = 0;
+    return DEM_OK;
+}

@@ -281,6 +281,9 @@ typedef enum { DEM_RATE_NUMBER, DEM_RATE_MASS } dem_rate_kind;
 dem_status dem_world_add_inlet(dem_world *w, size_t nv, const double *polygon,
                                dem_rate_kind kind, double rate, double t_start, double t_end,
                                const dem_particle_template *t, int *inlet_id);
+/** Remove all inlets (their ids become invalid); e.g. on the processors
+ *  that must not insert after a decomposed restart of a serial state. */
+dem_status dem_world_clear_inlets(dem_world *w);
 
 /*--- outlets and deletion -----------------------------------------------------*/
 /** Outlet that deletes particles whose centre is beyond a plane (on the side the normal points to). */

@@ -8,6 +8,7 @@
 #include "wallPolyPatch.H"
 #include "cyclicPolyPatch.H"
 #include "processorPolyPatch.H"
+#include "processorCyclicPolyPatch.H"
 #include "mathematicalConstants.H"
 #include "OSspecific.H"
 #include <fstream>
@@ -224,6 +225,13 @@ Foam::demCoupling::demCoupling
     startTime_ = mesh.time().value();
     injectParticleNaN_ = injectedStep("particleNaN");
 
+    // decomposed: the mesh's tet base points are computed with
+    // communication on first use (findCell); here, on every processor, so
+    // that a later findCell on one processor alone does not wait for others
+    if (Pstream::parRun())
+    {
+        (void)mesh_.tetBasePtIs();
+    }
     periodic_ = false;
     boxLo_ = Zero;
     boxHi_ = Zero;
@@ -370,38 +378,55 @@ void Foam::demCoupling::configureWorld()
         c.periodic[k] = 0;
     }
 
-    // cyclic patches -> periodic axes (translational, axis-aligned)
-    for (const polyPatch& pp : mesh_.boundaryMesh())
+    // cyclic patches -> periodic axes (translational, axis-aligned).
+    // Decomposed, a cyclic's faces may lie on processorCyclic patches (its
+    // halves on different processors): the area of each cyclic is summed
+    // over its own faces and those, over all processors
+    const polyBoundaryMesh& bm = mesh_.boundaryMesh();
+    List<vector> cycArea(bm.size(), Zero);
+    labelList cycFaces(bm.size(), 0);
+    for (const polyPatch& pp : bm)
     {
-        // (a decomposed cyclic may have no faces on this processor: the
-        // normal from the sum over all of them; all faces are parallel)
-        if
-        (
-            isA<cyclicPolyPatch>(pp)
-         && returnReduce(pp.size(), sumOp<label>())
-        )
+        label ci = -1;
+        if (isA<processorCyclicPolyPatch>(pp))
         {
-            vector n = gSum(pp.faceAreas());
-            n /= mag(n);
-            const direction k = findMax(cmptMag(n));
-            if (mag(n[k]) < 1 - 1e-6)
-            {
-                FatalErrorInFunction
-                    << "cyclic patch " << pp.name() << " is not normal to a "
-                    << "coordinate axis (normal " << n << "); only "
-                    << "axis-aligned translational cyclics become DEM "
-                    << "periodic boundaries" << exit(FatalError);
-            }
-            c.periodic[k] = 1;
-            c.domain_lo[k] = bb.min()[k];
-            c.domain_hi[k] = bb.max()[k];
-            periodic_[k] = true;
-            boxLo_[k] = bb.min()[k];
-            boxHi_[k] = bb.max()[k];
-            Info<< "demCoupling: cyclic patch " << pp.name()
-                << " -> DEM periodic along " << vector::componentNames[k]
-                << endl;
+            ci = refCast<const processorCyclicPolyPatch>(pp).referPatchID();
         }
+        else if (isA<cyclicPolyPatch>(pp))
+        {
+            ci = pp.index();
+        }
+        if (ci >= 0)
+        {
+            cycArea[ci] += sum(pp.faceAreas());
+            cycFaces[ci] += pp.size();
+        }
+    }
+    for (label patchi = 0; patchi < bm.nNonProcessor(); ++patchi)
+    {
+        const polyPatch& pp = bm[patchi];
+        if (!isA<cyclicPolyPatch>(pp)) continue;
+        if (!returnReduce(cycFaces[patchi], sumOp<label>())) continue;
+        vector n = returnReduce(cycArea[patchi], sumOp<vector>());
+        n /= mag(n);
+        const direction k = findMax(cmptMag(n));
+        if (mag(n[k]) < 1 - 1e-6)
+        {
+            FatalErrorInFunction
+                << "cyclic patch " << pp.name() << " is not normal to a "
+                << "coordinate axis (normal " << n << "); only "
+                << "axis-aligned translational cyclics become DEM "
+                << "periodic boundaries" << exit(FatalError);
+        }
+        c.periodic[k] = 1;
+        c.domain_lo[k] = bb.min()[k];
+        c.domain_hi[k] = bb.max()[k];
+        periodic_[k] = true;
+        boxLo_[k] = bb.min()[k];
+        boxHi_[k] = bb.max()[k];
+        Info<< "demCoupling: cyclic patch " << pp.name()
+            << " -> DEM periodic along " << vector::componentNames[k]
+            << endl;
     }
 
     c.skin = d.getOrDefault<scalar>("skin", -1);

@@ -145,6 +145,12 @@ bool Foam::demCoupling::restoreState(const fileName& dir)
     world_.check(dem_world_clear_ghosts(world_), "dem_world_clear_ghosts");
     if (haveSerial)
     {
+        // the serial state brings its inlets to every processor: the
+        // master alone inserts
+        if (!Pstream::master())
+        {
+            world_.check(dem_world_clear_inlets(world_), "dem_world_clear_inlets");
+        }
         distributeByCell();
     }
     const fileName cpl(dir/"demCouplingState.bin");
