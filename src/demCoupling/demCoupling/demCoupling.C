@@ -309,15 +309,11 @@ Foam::demCoupling::demCoupling
             << failure_.c_str() << " (before the first step)" << exit(FatalError);
     }
 
+    // (the same line serial and decomposed: tutorials' post-processing
+    // reads it)
     Info<< "demCoupling: "
         << returnReduce(label(dem_world_count(world_)), sumOp<label>())
-        << " particles"
-        << (
-               Pstream::parRun()
-             ? " on " + Foam::name(Pstream::nProcs()) + " processors"
-             : std::string()
-           ).c_str()
-        << ", "
+        << " particles, "
         << "formulation " << dict_.get<word>("formulation")
         << ", drag " << dict_.get<word>("dragModel")
         << (cellMeanDrag_ ? " (cell-mean)" : " (per particle)")
