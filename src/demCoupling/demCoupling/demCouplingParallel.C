@@ -18,12 +18,17 @@ Description
     history to the processor whose cells hold them; particles no processor
     holds left the domain (outlet or lost, booked by the processor they left).
 
-    Which particles are sent where: every DEM step each processor's box of
-    its owned particle centres (the master's also covers the inlets, where
-    it inserts) and the largest particle radius are gathered; particle i goes
-    to processor r if its distance to r's box (periodic images included) is
-    below r_i + r_max.  A contact partner j of i on r lies in r's box and
-    |x_i - x_j| < r_i + r_j, so no contact is missed.
+    Which particles are sent where: when a new ghost set is chosen, each
+    processor's box of its owned particle centres (the master's also covers
+    the inlets, where it inserts), the largest particle radius and the skin
+    are gathered; particle i goes to processor r if its distance to r's box
+    (periodic images included) is below r_i + r_max + skin.  A contact
+    partner j of i on r lies in r's box and |x_i - x_j| < r_i + r_j; until
+    the next neighbour-list build each particle moves less than skin/2, so
+    no contact is missed.  A new set is chosen at the start of each fluid
+    step and whenever any processor's Verlet criterion asks for a list
+    rebuild (an insertion does); in between only x, v and omega of the same
+    ghosts are sent (forwardGhosts, dem_world_set_ghost_states).
 
     Walls: every processor adds the wall triangles of all processors (a
     particle near a processor boundary may touch a wall face of the
@@ -47,8 +52,8 @@ using namespace Foam::demTools;
 
 namespace
 {
-    // Distance from x to box bb along axis k; periodic axes (period L) take
-    // the nearest image
+    // Distance from x to the interval [lo, hi] of one axis; a periodic axis
+    // (period L) takes the nearest image
     Foam::scalar axisGap
     (
         const Foam::scalar x,
