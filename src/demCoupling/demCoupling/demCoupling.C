@@ -1045,16 +1045,10 @@ void Foam::demCoupling::locateAll()
 
     for (label i = 0; i < n; ++i)
     {
-        const int64_t id = a.id[i];
-        if (id >= hostById_.size())
-        {
-            const label old = hostById_.size();
-            hostById_.setSize(max(label(id + 1), 2*old + 16));
-            for (label k = old; k < hostById_.size(); ++k) hostById_[k] = -1;
-        }
+        label& host = idSlot(hostById_, a.id[i]);
         label exitFace = -1;
-        const label c = locator_.locate(wrapped(a, i), hostById_[id], exitFace);
-        hostById_[id] = c;
+        const label c = locator_.locate(wrapped(a, i), host, exitFace);
+        host = c;
         if (c < 0)
         {
             leaving.append(i);
@@ -1315,14 +1309,7 @@ void Foam::demCoupling::evolve
     // id -> start index
     for (label s = 0; s < n; ++s)
     {
-        const int64_t id = a.id[s];
-        if (id >= startById_.size())
-        {
-            const label old = startById_.size();
-            startById_.setSize(max(label(id + 1), 2*old + 16));
-            for (label k = old; k < startById_.size(); ++k) startById_[k] = -1;
-        }
-        startById_[id] = s;
+        idSlot(startById_, a.id[s]) = s;
     }
     auto startIndex = [&](const int64_t id) -> label
     {

@@ -624,17 +624,7 @@ void Foam::demCoupling::migrate
                         "dem_world_unpack_particle"
                     );
                     const dem_arrays b = world_.arrays();
-                    const int64_t id = b.id[b.n_owned - 1];
-                    if (id >= hostById_.size())
-                    {
-                        const label old = hostById_.size();
-                        hostById_.setSize(max(label(id + 1), 2*old + 16));
-                        for (label q = old; q < hostById_.size(); ++q)
-                        {
-                            hostById_[q] = -1;
-                        }
-                    }
-                    hostById_[id] = inCell[r][k];
+                    idSlot(hostById_, b.id[b.n_owned - 1]) = inCell[r][k];
                 }
                 off += inSizes[r][k];
             }
