@@ -38,3 +38,32 @@ finish() {
     [ "$nFail" -eq 0 ]
     exit $?
 }
+
+# ensureParaView: pvpython (Debian's python3-paraview), xvfb-run and xauth on
+# the PATH, installed with apt-get when missing and this is root.  Returns 1
+# with the reason in $paraViewMissing when they cannot be had.
+ensureParaView() {
+    local need="" t0
+    paraViewMissing=""
+    command -v pvpython >/dev/null || need="$need python3-paraview"
+    command -v xvfb-run >/dev/null || need="$need xvfb"
+    command -v xauth >/dev/null || need="$need xauth"
+    [ -z "$need" ] && return 0
+    if [ "$(id -u)" != 0 ]; then
+        paraViewMissing="missing Debian packages:$need (not root, cannot apt-get install them)"
+        return 1
+    fi
+    command -v apt-get >/dev/null || {
+        paraViewMissing="missing packages:$need and no apt-get on this machine"; return 1; }
+    echo "installing:$need (apt-get --no-install-recommends)"
+    t0=$(date +%s)
+    # shellcheck disable=SC2086
+    if ! DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $need; then
+        DEBIAN_FRONTEND=noninteractive apt-get update -q \
+        && DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $need \
+        || { paraViewMissing="apt-get install$need failed (no package mirror reachable?)"; return 1; }
+    fi
+    echo "installed in $(( $(date +%s) - t0 )) s"
+    command -v pvpython >/dev/null || {
+        paraViewMissing="pvpython still missing after installing python3-paraview"; return 1; }
+}
