@@ -2,6 +2,7 @@
 #   setupEnv          source etc/bashrc of this tree
 #   makeTmpCase SRC   copy SRC to a fresh temporary directory, cd there
 #   check NAME MEASURED EXPECTED RELTOL   print PASS/FAIL line, count failures
+#   checkRange NAME MEASURED LO HI        the same for LO <= MEASURED <= HI
 #   setKey FILE KEY VALUE   replace "KEY ...;" (first occurrence) in FILE
 top="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd -P)"
 nFail=0
@@ -27,6 +28,14 @@ m,e,t=float('$2'),float('$3'),float('$4')
 err=abs(m-e)/abs(e) if e!=0 else abs(m)
 print('PASS' if err<=t else 'FAIL')")
     echo "$r: $1: $2 vs $3 (tol $4)"
+    [ "$r" = PASS ] || nFail=$((nFail+1))
+}
+
+# checkRange NAME MEASURED LO HI  (LO <= MEASURED <= HI; -inf/inf for one side)
+checkRange() {
+    local r
+    r=$(python3 -c "print('PASS' if float('$3') <= float('$2') <= float('$4') else 'FAIL')")
+    echo "$r: $1: $2 vs [$3, $4]"
     [ "$r" = PASS ] || nFail=$((nFail+1))
 }
 
