@@ -515,6 +515,21 @@ void Foam::demCoupling::configureWorld()
                 ),
                 "dem_world_set_pair"
             );
+            Info<< "demCoupling: material pair " << e.keyword() << " ("
+                << names[0] << ", " << names[1] << ") replaces the combined"
+                << " parameters:";
+            if (m.youngs_modulus > 0)
+            {
+                Info<< " E " << m.youngs_modulus << " Pa,";
+            }
+            if (m.stiffness_n > 0)
+            {
+                Info<< " k_n " << m.stiffness_n << " N/m,";
+            }
+            Info<< " friction " << m.friction
+                << ", rolling friction " << m.rolling_friction << " m, "
+                << (m.restitution > 0 ? "restitution " : "damping ")
+                << (m.restitution > 0 ? m.restitution : m.damping) << nl;
         }
     }
     if (materialIds_.empty())
