@@ -3,7 +3,9 @@
 #   makeTmpCase SRC   copy SRC to a fresh temporary directory, cd there
 #   check NAME MEASURED EXPECTED RELTOL   print PASS/FAIL line, count failures
 #   checkRange NAME MEASURED LO HI        the same for LO <= MEASURED <= HI
-#   setKey FILE KEY VALUE   replace "KEY ...;" (first occurrence) in FILE
+#   setKey FILE KEY VALUE   replace "KEY ...;" (first occurrence, any
+#                     indentation) in FILE; a missing KEY is a FAIL
+#                     (run scripts set top-level entries with demSetEntry)
 top="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd -P)"
 nFail=0
 
@@ -41,6 +43,11 @@ checkRange() {
 
 setKey() {
     sed -i "0,/^\(\s*\)$2\s.*;/s//\1$2 $3;/" "$1"
+    # a key that is not there is a broken test, not a silent no-op
+    [ "$(sed -n "s/^\s*$2\s\+\([^;]*\);.*/\1/p" "$1" | head -n 1)" = "$3" ] || {
+        echo "FAIL: setKey: $1 has no entry '$2 ...;' to set to $3"
+        nFail=$((nFail+1)); return 1
+    }
 }
 
 finish() {
