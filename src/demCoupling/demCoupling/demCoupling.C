@@ -164,6 +164,9 @@ Foam::demCoupling::demCoupling
     frozen_(dict_.getOrDefault<bool>("frozen", false)),
     epsMin_(dict_.getOrDefault<scalar>("epsMin", 0.1)),
     etaWarning_(dict_.getOrDefault<scalar>("etaWarning", 20.0)),
+    rampTime_(dict_.getOrDefault<scalar>("insertionRampTime", 0)),
+    rampStart_(),
+    voidageTime_(mesh.time().value()),
     demDt_(0),
     dragUpdateInterval_(0),
     nSubCycles_(0),
@@ -182,6 +185,7 @@ Foam::demCoupling::demCoupling
     sumTau_(Zero),
     solidVolumeMesh_(0),
     solidVolumeParticles_(0),
+    solidVolumeRamp_(0),
     eps_
     (
         fieldIO(mesh, "eps", true),
@@ -1243,13 +1247,27 @@ void Foam::demCoupling::computeVoidage()
     const label n = label(a.n_owned);
     const scalarField& V = mesh_.V();
 
+    // insertion ramp: a particle inserted at t0 counts with the weight
+    // (t - t0)/rampTime_ until rampTime_ has passed, so that the fluid
+    // sees its volume arrive over rampTime_ instead of in one step
+    const scalar tNow = mesh_.time().value();
+    for (auto it = rampStart_.begin(); it != rampStart_.end(); )
+    {
+        if (tNow - it->second >= rampTime_) it = rampStart_.erase(it);
+        else ++it;
+    }
+    voidageTime_ = tNow;
+
     scalarField solid(mesh_.nCells(), 0);
     vectorField mom(mesh_.nCells(), Zero);
     solidVolumeParticles_ = 0;
+    solidVolumeRamp_ = 0;
     for (label i = 0; i < n; ++i)
     {
-        const scalar Vp = 4.0/3.0*pi*pow3(a.radius[i]);
-        solidVolumeParticles_ += Vp;
+        const scalar V1 = 4.0/3.0*pi*pow3(a.radius[i]);
+        const scalar Vp = rampWeight(a.id[i], tNow)*V1;
+        solidVolumeParticles_ += V1;
+        solidVolumeRamp_ += V1 - Vp;
         const vector v(toVec(a.v, i));
         for (label k = wStart_[i]; k < wStart_[i+1]; ++k)
         {
@@ -1259,6 +1277,7 @@ void Foam::demCoupling::computeVoidage()
     }
     solidVolumeMesh_ = gSum(solid);
     reduce(solidVolumeParticles_, sumOp<scalar>());
+    reduce(solidVolumeRamp_, sumOp<scalar>());
 
     epsRaw_.primitiveFieldRef() = 1.0 - solid/V;
     eps_.primitiveFieldRef() = max(epsRaw_.primitiveField(), epsMin_);
@@ -1273,6 +1292,50 @@ void Foam::demCoupling::computeVoidage()
     const dimensionedScalar one("one", dimless, 1.0);
     if (formulation_->pressureTimesVoidage()) pCoeff_ = eps_; else pCoeff_ = one;
     if (formulation_->viscousTimesVoidage()) tauCoeff_ = eps_; else tauCoeff_ = one;
+}
+
+
+Foam::scalar Foam::demCoupling::rampWeight
+(
+    const int64_t id,
+    const scalar t
+) const
+{
+    if (rampStart_.empty())
+    {
+        return 1;
+    }
+    const auto it = rampStart_.find(id);
+    return
+        it == rampStart_.end()
+      ? 1
+      : min(max(t - it->second, 0)/rampTime_, 1);
+}
+
+
+void Foam::demCoupling::startRamp(const DynamicList<int64_t>& inserted)
+{
+    if (rampTime_ <= 0)
+    {
+        return;
+    }
+    // (decomposed: the master inserts; new particles may migrate to another
+    // processor before their ramp ends, so every processor keeps all ids)
+    List<List<int64_t>> all(Pstream::nProcs());
+    all[Pstream::myProcNo()] = inserted;
+    if (Pstream::parRun())
+    {
+        Pstream::gatherList(all);
+        Pstream::scatterList(all);
+    }
+    const scalar t0 = mesh_.time().value() - mesh_.time().deltaTValue();
+    for (const List<int64_t>& ids : all)
+    {
+        for (const int64_t id : ids)
+        {
+            rampStart_[id] = t0;
+        }
+    }
 }
 
 
@@ -1346,9 +1409,20 @@ void Foam::demCoupling::evolve
     // cell-mean particle velocity (for the cell-mean drag variant)
     const vectorField& vsCell = Up_.primitiveField();
 
+    // the particle volume the fluid sees (the voidage of this step; less
+    // while an insertion ramp runs): the forces that scale with it, and
+    // their share of the exchange, use the same volume, so that the
+    // momentum exchange stays exact
+    scalarField VpS(n);
     for (label s = 0; s < n; ++s)
     {
-        const scalar Vp = 4.0/3.0*pi*pow3(a.radius[s]);
+        VpS[s] =
+            rampWeight(a.id[s], voidageTime_)*4.0/3.0*pi*pow3(a.radius[s]);
+    }
+
+    for (label s = 0; s < n; ++s)
+    {
+        const scalar Vp = VpS[s];
         uF[s] = interp(s, Uc);
         const vector gp = rhof_*interp(s, gradPc) + G_;
         const vector dtau = rhof_*interp(s, divTc);
@@ -1497,6 +1571,7 @@ void Foam::demCoupling::evolve
         fExtra_[k].setSize(nEnd);
     }
     label nSeen = 0;
+    DynamicList<int64_t> inserted;
 
     for (label j = 0; j < nEnd; ++j)
     {
@@ -1504,12 +1579,13 @@ void Foam::demCoupling::evolve
         const label s = startOf(a.id[j]);
         if (s < 0)
         {
+            inserted.append(a.id[j]);
             fDrag_[j] = Zero; fGradP_[j] = Zero; etaP_[j] = 0;
             forAll(fExtra_, k) fExtra_[k][j] = Zero;
             continue;
         }
         ++nSeen;
-        const scalar Vp = 4.0/3.0*pi*pow3(a.radius[j]);
+        const scalar Vp = VpS[s];
         const vector dragRate = toVec(a.drag_impulse, j)/dt;
         // extra forces: explicit impulse plus the implicit added-mass part
         // -m_a (v_end - v_start) (exactly what the core applied)
@@ -1604,6 +1680,7 @@ void Foam::demCoupling::evolve
     Ucoup_.primitiveFieldRef() = Uc;
 
     // 5: new positions -> voidage for the fluid step
+    startRamp(inserted);
     locateAll();
     computeWeights();
     computeVoidage();

@@ -22,11 +22,18 @@ void Foam::demCoupling::report(const bool full) const
         << ", of pressure-gradient forces " << sumGradP_
         << ", of viscous forces " << sumTau_ << endl;
 
+    // (mesh + the part still ramping in = particles)
     Info<< "demCoupling: solid volume: mesh " << solidVolumeMesh_
         << " particles " << solidVolumeParticles_
         << " relDiff "
-        << mag(solidVolumeMesh_ - solidVolumeParticles_)
-          /max(solidVolumeParticles_, VSMALL) << nl
+        << mag(solidVolumeMesh_ + solidVolumeRamp_ - solidVolumeParticles_)
+          /max(solidVolumeParticles_, VSMALL);
+    if (rampTime_ > 0)
+    {
+        Info<< " (ramping in " << solidVolumeRamp_ << ", "
+            << label(rampStart_.size()) << " particles)";
+    }
+    Info<< nl
         << "demCoupling: bed-average eta " << bedEta_ << " %" << endl;
 
     if
@@ -181,9 +188,11 @@ void Foam::demCoupling::write() const
 
 
 // The coupling's own history for an exact restart: the fluid velocity of
-// the last step (du/dt of the extra forces) and the periodic driving
-// gradient G.  Binary, native: "DEMCPL2\0", nCells, time index of Uprev,
-// G, Uprev.
+// the last step (du/dt of the extra forces), the periodic driving
+// gradient G and the insertion ramps.  Binary, native: "DEMCPL2\0",
+// nCells, time index of Uprev, G, Uprev, then (since insertionRampTime;
+// absent in older files: no ramps) the number of ramps and per ramp the
+// particle id and its start time.
 void Foam::demCoupling::writeCouplingState(const fileName& file) const
 {
     std::ofstream os(file.c_str(), std::ios::binary);
@@ -197,6 +206,13 @@ void Foam::demCoupling::writeCouplingState(const fileName& file) const
     if (n)
     {
         os.write(reinterpret_cast<const char*>(Uprev_.cdata()), 3*n*sizeof(scalar));
+    }
+    const int64_t nRamp = rampStart_.size();
+    os.write(reinterpret_cast<const char*>(&nRamp), sizeof nRamp);
+    for (const auto& r : rampStart_)
+    {
+        os.write(reinterpret_cast<const char*>(&r.first), sizeof r.first);
+        os.write(reinterpret_cast<const char*>(&r.second), sizeof r.second);
     }
     if (!os.good())
     {
@@ -239,6 +255,24 @@ void Foam::demCoupling::readCouplingState
     if (n)
     {
         is.read(reinterpret_cast<char*>(Uprev_.data()), 3*n*sizeof(scalar));
+    }
+    rampStart_.clear();
+    if (is.good() && is.peek() == std::ifstream::traits_type::eof())
+    {
+        is.clear();     // a file from before the ramps: none
+    }
+    else if (is.good())
+    {
+        int64_t nRamp = -1;
+        is.read(reinterpret_cast<char*>(&nRamp), sizeof nRamp);
+        for (int64_t k = 0; k < nRamp && is.good(); ++k)
+        {
+            int64_t id;
+            scalar t0;
+            is.read(reinterpret_cast<char*>(&id), sizeof id);
+            is.read(reinterpret_cast<char*>(&t0), sizeof t0);
+            rampStart_[id] = t0;
+        }
     }
     if (otherMesh)
     {

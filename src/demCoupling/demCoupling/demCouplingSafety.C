@@ -58,6 +58,7 @@ void Foam::demCoupling::checkpoint()
     snapUprev_ = Uprev_;
     snapIndexUprev_ = indexUprev_;
     snapG_ = G_;
+    snapRampStart_ = rampStart_;
     snapVec_.setSize(3);
     snapVec_[0] = F_.primitiveField();
     snapVec_[1] = source_.primitiveField();
@@ -94,6 +95,7 @@ void Foam::demCoupling::restoreCheckpoint()
     Uprev_ = snapUprev_;
     indexUprev_ = snapIndexUprev_;
     G_ = snapG_;
+    rampStart_ = snapRampStart_;
     F_.primitiveFieldRef() = snapVec_[0];
     source_.primitiveFieldRef() = snapVec_[1];
     Ucoup_.primitiveFieldRef() = snapVec_[2];

@@ -485,6 +485,7 @@ bool Foam::demCoupling::checkDictionary
         choice("voidageModel", voidages),
         num("epsMin", kind::Scalar, 0, 1, true, true),
         num("etaWarning", kind::Scalar, 0, inf, false, false),
+        num("insertionRampTime", kind::Scalar, 0, inf, false, false),
         any("frozen", kind::Bool),
         num("maxWalkSteps", kind::Label, 1, inf, false, false),
         any("extraForces", kind::List),
