@@ -1565,6 +1565,15 @@ void Foam::demCoupling::evolve
     fDrag_.setSize(nEnd);
     fGradP_.setSize(nEnd);
     etaP_.setSize(nEnd);
+    coordP_.setSize(nEnd);
+    if (nEnd)
+    {
+        world_.check
+        (
+            dem_world_particle_contacts(world_, coordP_.data(), nullptr),
+            "dem_world_particle_contacts"
+        );
+    }
     fExtra_.setSize(nExtra);
     forAll(fExtra_, k)
     {

@@ -149,7 +149,8 @@ void Foam::demCoupling::write() const
         Fdrag[i] = known ? fDrag_[*iter] : vector::zero;
         FgradP[i] = known ? fGradP_[*iter] : vector::zero;
         eta[i] = known ? etaP_[*iter] : 0;
-        coordination[i] = coord[i];
+        // (the core's count now is 0 after a migration: see coordP_)
+        coordination[i] = known ? coordP_[*iter] : coord[i];
         id[i] = label(a.id[i]);
     }
 

@@ -53,6 +53,7 @@ void Foam::demCoupling::checkpoint()
     snapFDrag_ = fDrag_;
     snapFGradP_ = fGradP_;
     snapEtaP_ = etaP_;
+    snapCoordP_ = coordP_;
     snapFExtra_ = fExtra_;
     snapBedEta_ = bedEta_;
     snapUprev_ = Uprev_;
@@ -90,6 +91,7 @@ void Foam::demCoupling::restoreCheckpoint()
     fDrag_ = snapFDrag_;
     fGradP_ = snapFGradP_;
     etaP_ = snapEtaP_;
+    coordP_ = snapCoordP_;
     fExtra_ = snapFExtra_;
     bedEta_ = snapBedEta_;
     Uprev_ = snapUprev_;
