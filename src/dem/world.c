@@ -714,13 +714,21 @@ dem_status dem_world_particle_contacts(const dem_world *w, int *coord, double *f
 {
     if (!w) return DEM_ERR_ARG;
     if (w->n == 0) return DEM_OK;
-    if (force) {
-        if (w->forces_valid) memcpy(force, w->f, 3 * w->n * sizeof(double));
-        else memset(force, 0, 3 * w->n * sizeof(double));
-    }
+    /* Both come from the last force evaluation, the coordination also from
+       its neighbour list.  Before the first evaluation (or after a wall
+       change) neither is known; after an insert, remove, restore or
+       ghost exchange the list is gone and pairs can no longer be told.
+       Say so instead of returning zeros. */
+    if ((force || coord) && !w->forces_valid)
+        return DEM_FAIL(w, DEM_ERR_STATE, "particle_contacts: no force evaluation since the start or the last "
+                        "wall change (step %lld); take a step first", (long long)w->step);
+    if (coord && !w->list_valid)
+        return DEM_FAIL(w, DEM_ERR_STATE, "particle_contacts: coordination unknown, the neighbour list was "
+                        "dropped after the last force evaluation (insert, remove, restore or ghost exchange; "
+                        "step %lld); take a step first", (long long)w->step);
+    if (force) memcpy(force, w->f, 3 * w->n * sizeof(double));
     if (coord) {
         memset(coord, 0, w->n * sizeof(int));
-        if (!w->list_valid || !w->forces_valid) return DEM_OK;
         for (size_t i = 0; i < w->nrows; ++i) {
             for (int k = w->nb_off[i]; k < w->nb_off[i + 1]; ++k) {
                 size_t j = (size_t)w->nb_j[k];

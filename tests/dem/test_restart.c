@@ -163,12 +163,30 @@ int main(void)
     TRY(p, dem_world_remove_particle(p, ip, -1));
     TRY(p, dem_world_unpack_particle(p, buf, sz, 0));
     free(buf);
+    /* the unpack dropped the neighbour list: the coordination is not known
+       (an error, not zeros) until the next step */
+    int *cp = calloc(dem_world_count(p), sizeof(int)), *cq = calloc(dem_world_count(q), sizeof(int));
+    check_status("particle_contacts after remove + unpack: DEM_ERR_STATE",
+                 dem_world_particle_contacts(p, cp, NULL), DEM_ERR_STATE);
+    check_status("contact forces alone after remove + unpack: still those of the last evaluation",
+                 dem_world_particle_contacts(p, NULL, NULL), DEM_OK);
     TRY(p, dem_world_step(p, 1));
     TRY(q, dem_world_step(q, 1));
     /* compare by id */
     dem_arrays P, Q;
     TRY(p, dem_world_arrays(p, &P));
     TRY(q, dem_world_arrays(q, &Q));
+    TRY(p, dem_world_particle_contacts(p, cp, NULL));
+    TRY(q, dem_world_particle_contacts(q, cq, NULL));
+    long zdiff = 0, zq = 0;
+    for (size_t i = 0; i < Q.n_owned; ++i) {
+        zq += cq[i];
+        for (size_t j = 0; j < P.n_owned; ++j)
+            if (P.id[j] == Q.id[i]) zdiff += labs((long)cp[j] - (long)cq[i]);
+    }
+    free(cp); free(cq);
+    check_below("pack/unpack: contacts counted after the next step (sum over the bed > 0)", -(double)zq, 0.0);
+    check_abs("pack/unpack: coordination by id after the next step as without the move", (double)zdiff, 0.0, 0.0);
     double dmax = 0;
     for (size_t i = 0; i < Q.n_owned; ++i)
         for (size_t j = 0; j < P.n_owned; ++j)

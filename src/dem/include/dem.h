@@ -316,7 +316,11 @@ dem_status dem_world_stats(const dem_world *w, dem_stats *s);
  *  the neighbour/wall lists with their contact history.  Either may be NULL. */
 dem_status dem_world_memory(const dem_world *w, size_t *particle_bytes, size_t *list_bytes);
 /** Per owned particle: coordination number (particle contacts) and the sum
- *  of contact forces (3 per particle).  Either pointer may be NULL. */
+ *  of contact forces (3 per particle), as of the last force evaluation.
+ *  Either pointer may be NULL.  DEM_ERR_STATE (nothing written) when the
+ *  particles changed since that evaluation (insert, remove, restore, a wall
+ *  change, ghosts cleared): the answer is then not known until the next
+ *  step. */
 dem_status dem_world_particle_contacts(const dem_world *w, int *coordination, double *contact_force);
 
 /*--- state ----------------------------------------------------------------------*/

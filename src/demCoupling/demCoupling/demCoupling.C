@@ -1566,8 +1566,18 @@ void Foam::demCoupling::evolve
     fGradP_.setSize(nEnd);
     etaP_.setSize(nEnd);
     coordP_.setSize(nEnd);
-    if (nEnd)
+    if (frozen_ || !mesh_.time().writeTime())
     {
+        // not counted: a fixed bed never evaluates contacts, and only
+        // write steps write them (a count costs about 0.1 DEM step; a
+        // last good state after a failure has them if its step was a
+        // write step)
+        coordP_ = -1;
+    }
+    else if (nEnd)
+    {
+        // now, while the sub-steps' neighbour list is valid (a migration
+        // clears it: the core then reports the count as unknown)
         world_.check
         (
             dem_world_particle_contacts(world_, coordP_.data(), nullptr),

@@ -8,7 +8,9 @@
 
 void Foam::demCoupling::report(const bool full) const
 {
-    const scalar rel = balanceFluid_/balanceParticle_;
+    // (before the first step both are 0)
+    const scalar rel =
+        balanceParticle_ > 0 ? balanceFluid_/balanceParticle_ : scalar(0);
     Info<< "demCoupling: particles "
         << returnReduce(label(dem_world_count(world_)), sumOp<label>())
         << ", DEM steps " << nSubCycles_
@@ -108,14 +110,38 @@ void Foam::demCoupling::write() const
         cloud.addParticle(new passiveParticle(mesh_, wrapped(a, i), host_[i]));
     }
 
-    List<int> coord(n, 0);
-    if (n)
+    // per-particle results of the last coupling step, by id
+    Map<label> outIndex(2*outIds_.size() + 1);
+    forAll(outIds_, j)
     {
-        world_.check
-        (
-            dem_world_particle_contacts(world_, coord.data(), nullptr),
-            "dem_world_particle_contacts"
-        );
+        outIndex.insert(label(outIds_[j]), j);
+    }
+
+    // Coordination of particles the last coupling step did not count (a
+    // failure in the first step after a start): the core's count if it
+    // has one, else -1, "not counted" (no contacts evaluated since the
+    // start or the restore)
+    List<int> coord(n, -1);
+    label nUncounted = 0;
+    for (label i = 0; i < n; ++i)
+    {
+        if (!outIndex.found(label(a.id[i]))) ++nUncounted;
+    }
+    if (nUncounted)
+    {
+        const dem_status st =
+            dem_world_particle_contacts(world_, coord.data(), nullptr);
+        if (st == DEM_ERR_STATE)
+        {
+            coord = -1;
+            Info<< "demCoupling: coordination of " << nUncounted
+                << " particles not counted yet (no contact evaluation since "
+                << "the start or restart); written as -1" << endl;
+        }
+        else
+        {
+            world_.check(st, "dem_world_particle_contacts");
+        }
     }
 
     IOField<scalar> d(cloud.fieldIOobject("d", IOobject::NO_READ), n);
@@ -131,13 +157,6 @@ void Foam::demCoupling::write() const
     );
     IOField<label> id(cloud.fieldIOobject("id", IOobject::NO_READ), n);
 
-    // per-particle results of the last coupling step, by id
-    Map<label> outIndex(2*outIds_.size() + 1);
-    forAll(outIds_, j)
-    {
-        outIndex.insert(label(outIds_[j]), j);
-    }
-
     for (label i = 0; i < n; ++i)
     {
         d[i] = 2*a.radius[i];
@@ -149,7 +168,6 @@ void Foam::demCoupling::write() const
         Fdrag[i] = known ? fDrag_[*iter] : vector::zero;
         FgradP[i] = known ? fGradP_[*iter] : vector::zero;
         eta[i] = known ? etaP_[*iter] : 0;
-        // (the core's count now is 0 after a migration: see coordP_)
         coordination[i] = known ? coordP_[*iter] : coord[i];
         id[i] = label(a.id[i]);
     }
