@@ -165,9 +165,10 @@ int main(void)
     free(buf);
     /* the unpack dropped the neighbour list: the coordination is not known
        (an error, not zeros) until the next step */
-    int *cp = calloc(dem_world_count(p), sizeof(int)), *cq = calloc(dem_world_count(q), sizeof(int));
+    int *cp = calloc(dem_world_count(p), sizeof(int));
     check_status("particle_contacts after remove + unpack: DEM_ERR_STATE",
                  dem_world_particle_contacts(p, cp, NULL), DEM_ERR_STATE);
+    free(cp);
     check_status("contact forces alone after remove + unpack: still those of the last evaluation",
                  dem_world_particle_contacts(p, NULL, NULL), DEM_OK);
     TRY(p, dem_world_step(p, 1));
@@ -176,6 +177,9 @@ int main(void)
     dem_arrays P, Q;
     TRY(p, dem_world_arrays(p, &P));
     TRY(q, dem_world_arrays(q, &Q));
+    /* (the step may insert: size by the counts after it) */
+    cp = calloc(P.n_owned + 1, sizeof(int));
+    int *cq = calloc(Q.n_owned + 1, sizeof(int));
     TRY(p, dem_world_particle_contacts(p, cp, NULL));
     TRY(q, dem_world_particle_contacts(q, cq, NULL));
     long zdiff = 0, zq = 0;
