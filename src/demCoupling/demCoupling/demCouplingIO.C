@@ -117,33 +117,6 @@ void Foam::demCoupling::write() const
         outIndex.insert(label(outIds_[j]), j);
     }
 
-    // Coordination of particles the last coupling step did not count (a
-    // failure in the first step after a start): the core's count if it
-    // has one, else -1, "not counted" (no contacts evaluated since the
-    // start or the restore)
-    List<int> coord(n, -1);
-    label nUncounted = 0;
-    for (label i = 0; i < n; ++i)
-    {
-        if (!outIndex.found(label(a.id[i]))) ++nUncounted;
-    }
-    if (nUncounted)
-    {
-        const dem_status st =
-            dem_world_particle_contacts(world_, coord.data(), nullptr);
-        if (st == DEM_ERR_STATE)
-        {
-            coord = -1;
-            Info<< "demCoupling: coordination of " << nUncounted
-                << " particles not counted yet (no contact evaluation since "
-                << "the start or restart); written as -1" << endl;
-        }
-        else
-        {
-            world_.check(st, "dem_world_particle_contacts");
-        }
-    }
-
     IOField<scalar> d(cloud.fieldIOobject("d", IOobject::NO_READ), n);
     IOField<scalar> rho(cloud.fieldIOobject("rho", IOobject::NO_READ), n);
     IOField<vector> U(cloud.fieldIOobject("U", IOobject::NO_READ), n);
@@ -157,6 +130,11 @@ void Foam::demCoupling::write() const
     );
     IOField<label> id(cloud.fieldIOobject("id", IOobject::NO_READ), n);
 
+    // Particles without results of the last coupling step: in a
+    // decomposed run those that changed processor after it (section 5 of
+    // evolve); a serial run has none (a failure in the first step
+    // writes nothing)
+    label nUnknown = 0;
     for (label i = 0; i < n; ++i)
     {
         d[i] = 2*a.radius[i];
@@ -168,8 +146,17 @@ void Foam::demCoupling::write() const
         Fdrag[i] = known ? fDrag_[*iter] : vector::zero;
         FgradP[i] = known ? fGradP_[*iter] : vector::zero;
         eta[i] = known ? etaP_[*iter] : 0;
-        coordination[i] = known ? coordP_[*iter] : coord[i];
+        // (-1: not counted; see the log line below)
+        coordination[i] = known ? coordP_[*iter] : -1;
+        if (!known) ++nUnknown;
         id[i] = label(a.id[i]);
+    }
+
+    if (nUnknown)
+    {
+        Pout<< "demCoupling: " << nUnknown << " particles arrived after the "
+            << "last coupling step: written with Fdrag, FgradP, eta 0 and "
+            << "coordination -1" << endl;
     }
 
     cloud.write();
