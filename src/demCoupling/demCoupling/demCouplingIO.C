@@ -3,6 +3,7 @@
 #include "passiveParticleCloud.H"
 #include "IOField.H"
 #include "Map.H"
+#include "PstreamBuffers.H"
 #include "OSspecific.H"
 #include "mathematicalConstants.H"
 
@@ -96,6 +97,17 @@ Foam::label Foam::demCoupling::outletTotal(const label k, scalar& mass) const
 }
 
 
+
+Foam::Map<Foam::label> Foam::demCoupling::outIndexById() const
+{
+    Map<label> index(2*outIds_.size() + 1);
+    forAll(outIds_, j)
+    {
+        index.insert(label(outIds_[j]), j);
+    }
+    return index;
+}
+
 void Foam::demCoupling::write() const
 {
     report(true);
@@ -111,11 +123,7 @@ void Foam::demCoupling::write() const
     }
 
     // per-particle results of the last coupling step, by id
-    Map<label> outIndex(2*outIds_.size() + 1);
-    forAll(outIds_, j)
-    {
-        outIndex.insert(label(outIds_[j]), j);
-    }
+    const Map<label> outIndex(outIndexById());
 
     IOField<scalar> d(cloud.fieldIOobject("d", IOobject::NO_READ), n);
     IOField<scalar> rho(cloud.fieldIOobject("rho", IOobject::NO_READ), n);
@@ -130,33 +138,89 @@ void Foam::demCoupling::write() const
     );
     IOField<label> id(cloud.fieldIOobject("id", IOobject::NO_READ), n);
 
-    // Particles without results of the last coupling step: in a
-    // decomposed run those that changed processor after it (section 5 of
-    // evolve); a serial run has none (a failure in the first step
-    // writes nothing)
-    label nUnknown = 0;
+    // Results of the last coupling step, by id.  In a decomposed run a
+    // particle that changed processor after that step (section 5 of
+    // evolve: locate, then migrate) has them on the processor it left:
+    // they are fetched from there (collective).  A serial run has all.
+    const label nExtra = extraForces_.size();
+    const bool haveExtra = fExtra_.size() == nExtra;
+    List<vectorField> Fextra(nExtra, vectorField(n, Zero));
+    DynamicList<label> missing;
     for (label i = 0; i < n; ++i)
     {
         d[i] = 2*a.radius[i];
         rho[i] = a.density[i];
         U[i] = vector(a.v[3*i], a.v[3*i+1], a.v[3*i+2]);
         omega[i] = vector(a.omega[3*i], a.omega[3*i+1], a.omega[3*i+2]);
-        const auto iter = outIndex.cfind(label(a.id[i]));
-        const bool known = iter.found();
-        Fdrag[i] = known ? fDrag_[*iter] : vector::zero;
-        FgradP[i] = known ? fGradP_[*iter] : vector::zero;
-        eta[i] = known ? etaP_[*iter] : 0;
-        // (-1: not counted; see the log line below)
-        coordination[i] = known ? coordP_[*iter] : -1;
-        if (!known) ++nUnknown;
         id[i] = label(a.id[i]);
+        const auto iter = outIndex.cfind(id[i]);
+        if (!iter.found())
+        {
+            missing.append(i);
+            continue;
+        }
+        Fdrag[i] = fDrag_[*iter];
+        FgradP[i] = fGradP_[*iter];
+        eta[i] = etaP_[*iter];
+        coordination[i] = coordP_[*iter];
+        forAll(Fextra, k)
+        {
+            Fextra[k][i] = haveExtra ? fExtra_[k][*iter] : Zero;
+        }
     }
 
-    if (nUnknown)
+    label nMissing = missing.size();
+    if (Pstream::parRun() && returnReduce(nMissing, sumOp<label>()))
     {
-        Pout<< "demCoupling: " << nUnknown << " particles arrived after the "
-            << "last coupling step: written with Fdrag, FgradP, eta 0 and "
-            << "coordination -1" << endl;
+        labelList ids(nMissing);
+        forAll(ids, m)
+        {
+            ids[m] = id[missing[m]];
+        }
+        List<vector> fd, fgp;
+        scalarList et;
+        labelList co;
+        List<List<vector>> fx;
+        boolList found;
+        resultsOf(ids, fd, fgp, et, co, fx, found);
+        nMissing = 0;
+        forAll(ids, m)
+        {
+            const label i = missing[m];
+            if (!found[m])
+            {
+                missing[nMissing++] = i;
+                continue;
+            }
+            Fdrag[i] = fd[m];
+            FgradP[i] = fgp[m];
+            eta[i] = et[m];
+            coordination[i] = co[m];
+            forAll(Fextra, k)
+            {
+                Fextra[k][i] = fx[k][m];
+            }
+        }
+    }
+    // none is left; a particle without results on any processor would be
+    // a defect: written as zeros and -1, and said
+    for (label m = 0; m < nMissing; ++m)
+    {
+        const label i = missing[m];
+        Fdrag[i] = Zero;
+        FgradP[i] = Zero;
+        eta[i] = 0;
+        coordination[i] = -1;
+        forAll(Fextra, k)
+        {
+            Fextra[k][i] = Zero;
+        }
+    }
+    if (nMissing)
+    {
+        Pout<< "demCoupling: " << nMissing << " particles have no results of "
+            << "the last coupling step on any processor: written with Fdrag, "
+            << "FgradP, eta 0 and coordination -1" << endl;
     }
 
     cloud.write();
@@ -172,15 +236,8 @@ void Foam::demCoupling::write() const
         IOField<vector> f
         (
             cloud.fieldIOobject("F" + extraForces_[k].type(), IOobject::NO_READ),
-            n
+            Fextra[k]
         );
-        for (label i = 0; i < n; ++i)
-        {
-            const auto iter = outIndex.cfind(label(a.id[i]));
-            f[i] =
-                iter.found() && fExtra_.size() == extraForces_.size()
-              ? fExtra_[k][*iter] : vector::zero;
-        }
         if (n) f.write();
     }
 
@@ -192,6 +249,110 @@ void Foam::demCoupling::write() const
     writeCouplingState(dir/"demCouplingState.bin");
 }
 
+
+// Results of the last coupling step of the particles ids (this processor's
+// request), from the processors that held them then; found[m] says whether
+// one did.  Collective: every processor calls it, with its own request
+// (possibly empty).
+void Foam::demCoupling::resultsOf
+(
+    const labelList& ids,
+    List<vector>& fd,
+    List<vector>& fgp,
+    scalarList& et,
+    labelList& co,
+    List<List<vector>>& fx,
+    boolList& found
+) const
+{
+    const label nProcs = Pstream::nProcs();
+    const label me = Pstream::myProcNo();
+    List<labelList> wanted(nProcs);
+    wanted[me] = ids;
+    Pstream::gatherList(wanted);
+    Pstream::scatterList(wanted);
+
+    const Map<label> outIndex(outIndexById());
+    const label nExtra = extraForces_.size();
+    const bool haveExtra = fExtra_.size() == nExtra;
+
+    PstreamBuffers pBufs(Pstream::commsTypes::nonBlocking);
+    for (label proci = 0; proci < nProcs; ++proci)
+    {
+        if (proci == me) continue;
+        DynamicList<label> aIds, aCo;
+        DynamicList<vector> aFd, aFgp;
+        DynamicList<scalar> aEt;
+        List<DynamicList<vector>> aFx(nExtra);
+        for (const label pid : wanted[proci])
+        {
+            const auto iter = outIndex.cfind(pid);
+            if (!iter.found()) continue;
+            const label j = *iter;
+            aIds.append(pid);
+            aFd.append(fDrag_[j]);
+            aFgp.append(fGradP_[j]);
+            aEt.append(etaP_[j]);
+            aCo.append(coordP_[j]);
+            forAll(aFx, k)
+            {
+                aFx[k].append(haveExtra ? fExtra_[k][j] : vector::zero);
+            }
+        }
+        UOPstream os(proci, pBufs);
+        os << aIds << aFd << aFgp << aEt << aCo;
+        forAll(aFx, k)
+        {
+            os << aFx[k];
+        }
+    }
+    pBufs.finishedSends();
+
+    Map<label> pos(2*ids.size() + 1);
+    forAll(ids, m)
+    {
+        pos.insert(ids[m], m);
+    }
+    fd.setSize(ids.size(), Zero);
+    fgp.setSize(ids.size(), Zero);
+    et.setSize(ids.size(), 0);
+    co.setSize(ids.size(), -1);
+    fx.setSize(nExtra);
+    forAll(fx, k)
+    {
+        fx[k].setSize(ids.size(), Zero);
+    }
+    found.setSize(ids.size(), false);
+    for (label proci = 0; proci < nProcs; ++proci)
+    {
+        if (proci == me) continue;
+        UIPstream is(proci, pBufs);
+        labelList aIds, aCo;
+        List<vector> aFd, aFgp;
+        scalarList aEt;
+        is >> aIds >> aFd >> aFgp >> aEt >> aCo;
+        List<List<vector>> aFx(nExtra);
+        forAll(aFx, k)
+        {
+            is >> aFx[k];
+        }
+        forAll(aIds, r)
+        {
+            const auto iter = pos.cfind(aIds[r]);
+            if (!iter.found()) continue;
+            const label m = *iter;
+            fd[m] = aFd[r];
+            fgp[m] = aFgp[r];
+            et[m] = aEt[r];
+            co[m] = aCo[r];
+            forAll(fx, k)
+            {
+                fx[k][m] = aFx[k][r];
+            }
+            found[m] = true;
+        }
+    }
+}
 
 // The coupling's own history for an exact restart: the fluid velocity of
 // the last step (du/dt of the extra forces), the periodic driving
