@@ -172,35 +172,17 @@ void Foam::demCoupling::write() const
     label nMissing = missing.size();
     if (Pstream::parRun() && returnReduce(nMissing, sumOp<label>()))
     {
-        labelList ids(nMissing);
-        forAll(ids, m)
-        {
-            ids[m] = id[missing[m]];
-        }
-        List<vector> fd, fgp;
-        scalarList et;
-        labelList co;
-        List<List<vector>> fx;
         boolList found;
-        resultsOf(ids, fd, fgp, et, co, fx, found);
-        nMissing = 0;
-        forAll(ids, m)
+        resultsOf(missing, id, Fdrag, FgradP, eta, coordination, Fextra, found);
+        label nLeft = 0;
+        forAll(missing, m)
         {
-            const label i = missing[m];
             if (!found[m])
             {
-                missing[nMissing++] = i;
-                continue;
-            }
-            Fdrag[i] = fd[m];
-            FgradP[i] = fgp[m];
-            eta[i] = et[m];
-            coordination[i] = co[m];
-            forAll(Fextra, k)
-            {
-                Fextra[k][i] = fx[k][m];
+                missing[nLeft++] = missing[m];
             }
         }
+        nMissing = nLeft;
     }
     // none is left; a particle without results on any processor would be
     // a defect: written as zeros and -1, and said
@@ -250,21 +232,27 @@ void Foam::demCoupling::write() const
 }
 
 
-// Results of the last coupling step of the particles ids (this processor's
-// request), from the processors that held them then; found[m] says whether
-// one did.  Collective: every processor calls it, with its own request
-// (possibly empty).
+// Results of the last coupling step of the particles slots (indices into
+// id and the output fields) from the processors that held them then;
+// found[m] says whether one did for slots[m].  Collective: every processor
+// calls it with its own request (possibly empty).
 void Foam::demCoupling::resultsOf
 (
-    const labelList& ids,
-    List<vector>& fd,
-    List<vector>& fgp,
-    scalarList& et,
-    labelList& co,
-    List<List<vector>>& fx,
+    const labelUList& slots,
+    const labelUList& id,
+    vectorField& Fdrag,
+    vectorField& FgradP,
+    scalarField& eta,
+    labelList& coordination,
+    List<vectorField>& Fextra,
     boolList& found
 ) const
 {
+    labelList ids(slots.size());
+    forAll(slots, m)
+    {
+        ids[m] = id[slots[m]];
+    }
     const label nProcs = Pstream::nProcs();
     const label me = Pstream::myProcNo();
     List<labelList> wanted(nProcs);
@@ -313,15 +301,6 @@ void Foam::demCoupling::resultsOf
     {
         pos.insert(ids[m], m);
     }
-    fd.setSize(ids.size(), Zero);
-    fgp.setSize(ids.size(), Zero);
-    et.setSize(ids.size(), 0);
-    co.setSize(ids.size(), -1);
-    fx.setSize(nExtra);
-    forAll(fx, k)
-    {
-        fx[k].setSize(ids.size(), Zero);
-    }
     found.setSize(ids.size(), false);
     for (label proci = 0; proci < nProcs; ++proci)
     {
@@ -341,13 +320,14 @@ void Foam::demCoupling::resultsOf
             const auto iter = pos.cfind(aIds[r]);
             if (!iter.found()) continue;
             const label m = *iter;
-            fd[m] = aFd[r];
-            fgp[m] = aFgp[r];
-            et[m] = aEt[r];
-            co[m] = aCo[r];
-            forAll(fx, k)
+            const label i = slots[m];
+            Fdrag[i] = aFd[r];
+            FgradP[i] = aFgp[r];
+            eta[i] = aEt[r];
+            coordination[i] = aCo[r];
+            forAll(Fextra, k)
             {
-                fx[k][m] = aFx[k][r];
+                Fextra[k][i] = aFx[k][r];
             }
             found[m] = true;
         }
