@@ -97,7 +97,6 @@ Foam::label Foam::demCoupling::outletTotal(const label k, scalar& mass) const
 }
 
 
-
 Foam::Map<Foam::label> Foam::demCoupling::outIndexById() const
 {
     Map<label> index(2*outIds_.size() + 1);
@@ -107,6 +106,7 @@ Foam::Map<Foam::label> Foam::demCoupling::outIndexById() const
     }
     return index;
 }
+
 
 void Foam::demCoupling::write() const
 {
