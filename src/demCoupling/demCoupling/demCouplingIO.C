@@ -97,17 +97,6 @@ Foam::label Foam::demCoupling::outletTotal(const label k, scalar& mass) const
 }
 
 
-Foam::Map<Foam::label> Foam::demCoupling::outIndexById() const
-{
-    Map<label> index(2*outIds_.size() + 1);
-    forAll(outIds_, j)
-    {
-        index.insert(label(outIds_[j]), j);
-    }
-    return index;
-}
-
-
 void Foam::demCoupling::write() const
 {
     report(true);
@@ -123,7 +112,11 @@ void Foam::demCoupling::write() const
     }
 
     // per-particle results of the last coupling step, by id
-    const Map<label> outIndex(outIndexById());
+    Map<label> outIndex(2*outIds_.size() + 1);
+    forAll(outIds_, j)
+    {
+        outIndex.insert(label(outIds_[j]), j);
+    }
 
     IOField<scalar> d(cloud.fieldIOobject("d", IOobject::NO_READ), n);
     IOField<scalar> rho(cloud.fieldIOobject("rho", IOobject::NO_READ), n);
@@ -142,9 +135,13 @@ void Foam::demCoupling::write() const
     // particle that changed processor after that step (section 5 of
     // evolve: locate, then migrate) has them on the processor it left:
     // they are fetched from there (collective).  A serial run has all.
-    const label nExtra = extraForces_.size();
-    const bool haveExtra = fExtra_.size() == nExtra;
-    List<vectorField> Fextra(nExtra, vectorField(n, Zero));
+    // A particle without results on any processor would be a defect: it
+    // keeps zeros and coordination -1, and the log says so.
+    Fdrag = Zero;
+    FgradP = Zero;
+    eta = 0;
+    coordination = -1;
+    List<vectorField> Fextra(extraForces_.size(), vectorField(n, Zero));
     DynamicList<label> missing;
     for (label i = 0; i < n; ++i)
     {
@@ -165,38 +162,17 @@ void Foam::demCoupling::write() const
         coordination[i] = coordP_[*iter];
         forAll(Fextra, k)
         {
-            Fextra[k][i] = haveExtra ? fExtra_[k][*iter] : Zero;
+            Fextra[k][i] = fExtra_[k][*iter];
         }
     }
 
     label nMissing = missing.size();
     if (Pstream::parRun() && returnReduce(nMissing, sumOp<label>()))
     {
-        boolList found;
-        resultsOf(missing, id, Fdrag, FgradP, eta, coordination, Fextra, found);
-        label nLeft = 0;
-        forAll(missing, m)
-        {
-            if (!found[m])
-            {
-                missing[nLeft++] = missing[m];
-            }
-        }
-        nMissing = nLeft;
-    }
-    // none is left; a particle without results on any processor would be
-    // a defect: written as zeros and -1, and said
-    for (label m = 0; m < nMissing; ++m)
-    {
-        const label i = missing[m];
-        Fdrag[i] = Zero;
-        FgradP[i] = Zero;
-        eta[i] = 0;
-        coordination[i] = -1;
-        forAll(Fextra, k)
-        {
-            Fextra[k][i] = Zero;
-        }
+        nMissing = resultsOf
+        (
+            outIndex, missing, id, Fdrag, FgradP, eta, coordination, Fextra
+        );
     }
     if (nMissing)
     {
@@ -233,19 +209,20 @@ void Foam::demCoupling::write() const
 
 
 // Results of the last coupling step of the particles slots (indices into
-// id and the output fields) from the processors that held them then;
-// found[m] says whether one did for slots[m].  Collective: every processor
-// calls it with its own request (possibly empty).
-void Foam::demCoupling::resultsOf
+// id and the output fields) from the processors that held them then
+// (outIndex: this processor's index of outIds_ by id); returns how many
+// no processor had.  Collective: every processor calls it with its own
+// request (possibly empty).
+Foam::label Foam::demCoupling::resultsOf
 (
+    const Map<label>& outIndex,
     const labelUList& slots,
     const labelUList& id,
     vectorField& Fdrag,
     vectorField& FgradP,
     scalarField& eta,
     labelList& coordination,
-    List<vectorField>& Fextra,
-    boolList& found
+    List<vectorField>& Fextra
 ) const
 {
     labelList ids(slots.size());
@@ -260,9 +237,7 @@ void Foam::demCoupling::resultsOf
     Pstream::gatherList(wanted);
     Pstream::scatterList(wanted);
 
-    const Map<label> outIndex(outIndexById());
     const label nExtra = extraForces_.size();
-    const bool haveExtra = fExtra_.size() == nExtra;
 
     PstreamBuffers pBufs(Pstream::commsTypes::nonBlocking);
     for (label proci = 0; proci < nProcs; ++proci)
@@ -284,7 +259,7 @@ void Foam::demCoupling::resultsOf
             aCo.append(coordP_[j]);
             forAll(aFx, k)
             {
-                aFx[k].append(haveExtra ? fExtra_[k][j] : vector::zero);
+                aFx[k].append(fExtra_[k][j]);
             }
         }
         UOPstream os(proci, pBufs);
@@ -301,7 +276,7 @@ void Foam::demCoupling::resultsOf
     {
         pos.insert(ids[m], m);
     }
-    found.setSize(ids.size(), false);
+    label nFound = 0;
     for (label proci = 0; proci < nProcs; ++proci)
     {
         if (proci == me) continue;
@@ -329,9 +304,10 @@ void Foam::demCoupling::resultsOf
             {
                 Fextra[k][i] = aFx[k][r];
             }
-            found[m] = true;
+            ++nFound;
         }
     }
+    return ids.size() - nFound;
 }
 
 // The coupling's own history for an exact restart: the fluid velocity of
