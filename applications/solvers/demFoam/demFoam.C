@@ -177,12 +177,22 @@ int main(int argc, char *argv[])
             ).count()
         );
 
-        if (runTime.writeTime())
+        const bool writeStep = dem.writeStep();
+        if (writeStep)
         {
             dem.write();
         }
-
-        runTime.write();
+        if (writeStep && !runTime.writeTime())
+        {
+            // the last step, endTime off the write grid
+            Info<< "demFoam: endTime " << runTime.endTime().value()
+                << " is off the write grid; writing the final state" << endl;
+            runTime.writeNow();
+        }
+        else
+        {
+            runTime.write();
+        }
 
         runTime.printExecutionTime(Info);
         dem.progress(!runTime.run());

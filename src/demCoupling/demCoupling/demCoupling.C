@@ -1339,6 +1339,15 @@ void Foam::demCoupling::startRamp(const DynamicList<int64_t>& inserted)
 }
 
 
+bool Foam::demCoupling::writeStep() const
+{
+    const Time& t = mesh_.time();
+    return
+        t.writeTime()
+     || t.value() >= t.endTime().value() - 0.5*t.deltaTValue();
+}
+
+
 void Foam::demCoupling::evolve
 (
     const volVectorField& U,
@@ -1566,7 +1575,7 @@ void Foam::demCoupling::evolve
     fGradP_.setSize(nEnd);
     etaP_.setSize(nEnd);
     coordP_.setSize(nEnd);
-    if (frozen_ || !mesh_.time().writeTime())
+    if (frozen_ || !writeStep())
     {
         // not counted: a fixed bed never evaluates contacts, and only
         // write steps write them (a count costs about 0.1 DEM step; a
