@@ -175,6 +175,10 @@ Foam::demCoupling::demCoupling
     drivingRelax_(0.2),
     G_(Zero),
     lostUnknown_(0),
+    haloSend_(),
+    haloStart_(2, Zero),
+    haloAny_(false),
+    haloParticleSteps_(0),
     bedEta_(0),
     balanceFluid_(0),
     balanceParticle_(0),
@@ -1229,15 +1233,23 @@ void Foam::demCoupling::computeWeights()
     wStart_.setSize(n + 1);
     wCells_.clear();
     wValues_.clear();
+    // decomposed: the parts in other processors' cells, by particle
+    DynamicList<remoteSample> remote;
+    DynamicList<label> remoteOwner;
     for (label i = 0; i < n; ++i)
     {
         wStart_[i] = wCells_.size();
         voidage_->addWeights
         (
-            wrapped(a, i), a.radius[i], host_[i], wCells_, wValues_
+            wrapped(a, i), a.radius[i], host_[i], wCells_, wValues_, remote
         );
+        while (remoteOwner.size() < remote.size())
+        {
+            remoteOwner.append(i);
+        }
     }
     wStart_[n] = wCells_.size();
+    resolveRemote(remoteOwner, remote);
 }
 
 
@@ -1260,6 +1272,9 @@ void Foam::demCoupling::computeVoidage()
 
     scalarField solid(mesh_.nCells(), 0);
     vectorField mom(mesh_.nCells(), Zero);
+    const label nHalo = haloStart_.last();
+    scalarField solidHalo(nHalo, 0);
+    vectorField momHalo(nHalo, Zero);
     solidVolumeParticles_ = 0;
     solidVolumeRamp_ = 0;
     for (label i = 0; i < n; ++i)
@@ -1268,13 +1283,11 @@ void Foam::demCoupling::computeVoidage()
         const scalar Vp = rampWeight(a.id[i], tNow)*V1;
         solidVolumeParticles_ += V1;
         solidVolumeRamp_ += V1 - Vp;
-        const vector v(toVec(a.v, i));
-        for (label k = wStart_[i]; k < wStart_[i+1]; ++k)
-        {
-            solid[wCells_[k]] += wValues_[k]*Vp;
-            mom[wCells_[k]] += wValues_[k]*Vp*v;
-        }
+        deposit(i, Vp, solid, solidHalo);
+        deposit(i, Vp*vector(toVec(a.v, i)), mom, momHalo);
     }
+    haloAdd(solid, solidHalo);
+    haloAdd(mom, momHalo);
     solidVolumeMesh_ = gSum(solid);
     reduce(solidVolumeParticles_, sumOp<scalar>());
     reduce(solidVolumeRamp_, sumOp<scalar>());
@@ -1429,14 +1442,27 @@ void Foam::demCoupling::evolve
             rampWeight(a.id[s], voidageTime_)*4.0/3.0*pi*pow3(a.radius[s]);
     }
 
+    // the same in the other processors' cells of the weights (halo)
+    const List<vector> UcH(haloGet(Uc));
+    const List<vector> gradPcH(haloGet(gradPc));
+    const List<vector> divTcH(haloGet(divTc));
+    const List<scalar> epscH(haloGet(epsc));
+    const List<scalar> nucH(haloGet(nuc));
+    const List<vector> vortH(nExtra ? haloGet(vortCell) : List<vector>());
+    const List<vector> DuDtH(nExtra ? haloGet(DuDtCell) : List<vector>());
+    const List<vector> vsCellH
+    (
+        cellMeanDrag_ ? haloGet(vsCell) : List<vector>()
+    );
+
     for (label s = 0; s < n; ++s)
     {
         const scalar Vp = VpS[s];
-        uF[s] = interp(s, Uc);
-        const vector gp = rhof_*interp(s, gradPc) + G_;
-        const vector dtau = rhof_*interp(s, divTc);
-        epsP[s] = interp(s, epsc);
-        muP[s] = rhof_*interp(s, nuc);
+        uF[s] = interp(s, Uc, UcH);
+        const vector gp = rhof_*interp(s, gradPc, gradPcH) + G_;
+        const vector dtau = rhof_*interp(s, divTc, divTcH);
+        epsP[s] = interp(s, epsc, epscH);
+        muP[s] = rhof_*interp(s, nuc, nucH);
         dragFac[s] = form.dragFactor(epsP[s]);
         fGP[s] = -Vp*gp;
         divTauP[s] = Vp*dtau;
@@ -1447,8 +1473,8 @@ void Foam::demCoupling::evolve
         scalar ma = 0;
         if (nExtra)
         {
-            vortP[s] = interp(s, vortCell);
-            DuDtP[s] = interp(s, DuDtCell);
+            vortP[s] = interp(s, vortCell, vortH);
+            DuDtP[s] = interp(s, DuDtCell, DuDtH);
             vStart[s] = toVec(a.v, s);
             forAll(extraForces_, k)
             {
@@ -1485,7 +1511,7 @@ void Foam::demCoupling::evolve
             if (cellMeanDrag_)
             {
                 // [S] method 1: drag from the cell-mean particle velocity
-                const vector vs = interp(s, vsCell);
+                const vector vs = interp(s, vsCell, vsCellH);
                 slip = uF[s] - vs;
                 uf = uF[s] - vs + v;
             }
@@ -1569,6 +1595,9 @@ void Foam::demCoupling::evolve
     label etaN = 0;
     scalarField etaCell(mesh_.nCells(), 0);
     scalarField wCell(mesh_.nCells(), 0);
+    const label nHalo = haloStart_.last();
+    vectorField FcHalo(nHalo, Zero);
+    scalarField KcellHalo(nHalo, 0), etaCellHalo(nHalo, 0), wCellHalo(nHalo, 0);
 
     outIds_.setSize(nEnd);
     fDrag_.setSize(nEnd);
@@ -1646,16 +1675,15 @@ void Foam::demCoupling::evolve
         etaSum += etaP_[j];
         ++etaN;
 
-        for (label k = wStart_[s]; k < wStart_[s+1]; ++k)
-        {
-            const label c = wCells_[k];
-            const scalar w = wValues_[k];
-            Fc[c] += w*exch;
-            Kcell[c] += w*Ksum[s];
-            etaCell[c] += w*etaP_[j];
-            wCell[c] += w;
-        }
+        deposit(s, exch, Fc, FcHalo);
+        deposit(s, Ksum[s], Kcell, KcellHalo);
+        deposit(s, etaP_[j], etaCell, etaCellHalo);
+        deposit(s, scalar(1), wCell, wCellHalo);
     }
+    haloAdd(Fc, FcHalo);
+    haloAdd(Kcell, KcellHalo);
+    haloAdd(etaCell, etaCellHalo);
+    haloAdd(wCell, wCellHalo);
     if (Pstream::parRun())
     {
         reduce(sumParticle, sumOp<vector>());

@@ -22,7 +22,8 @@ Foam::voidageModels::centre::centre
 void Foam::voidageModels::centre::addWeights
 (
     const point&, const scalar, const label hostCell,
-    DynamicList<label>& cells, DynamicList<scalar>& weights
+    DynamicList<label>& cells, DynamicList<scalar>& weights,
+    DynamicList<remoteSample>&
 ) const
 {
     cells.append(hostCell);

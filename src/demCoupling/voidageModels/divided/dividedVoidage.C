@@ -1,6 +1,8 @@
 #include "dividedVoidage.H"
 #include "addToRunTimeSelectionTable.H"
 #include "FixedList.H"
+#include "processorPolyPatch.H"
+#include "processorCyclicPolyPatch.H"
 
 namespace Foam
 {
@@ -42,13 +44,28 @@ Foam::voidageModels::divided::divided
         }
     }
     samples_.transfer(pts);
+
+    // processor faces (not processorCyclic: a serial run stops its walk at
+    // a cyclic face as at any boundary face)
+    procFace_.setSize(mesh_.nBoundaryFaces(), false);
+    for (const polyPatch& pp : mesh_.boundaryMesh())
+    {
+        if (isA<processorPolyPatch>(pp) && !isA<processorCyclicPolyPatch>(pp))
+        {
+            forAll(pp, i)
+            {
+                procFace_[pp.start() + i - mesh_.nInternalFaces()] = true;
+            }
+        }
+    }
 }
 
 
 void Foam::voidageModels::divided::addWeights
 (
     const point& x, const scalar r, const label hostCell,
-    DynamicList<label>& cells, DynamicList<scalar>& weights
+    DynamicList<label>& cells, DynamicList<scalar>& weights,
+    DynamicList<remoteSample>& remote
 ) const
 {
     const label start = cells.size();
@@ -89,6 +106,8 @@ void Foam::voidageModels::divided::addWeights
     }
 
     label prev = hostCell;
+    const label remoteStart = remote.size();
+    label nRemote = 0;
     forAll(samples_, s)
     {
         const vector q = r*samples_[s];
@@ -123,9 +142,23 @@ void Foam::voidageModels::divided::addWeights
                 continue;
             }
         }
-        label c = locator_.locate(x + q, prev, false);
+        label exitFace = -1;
+        label c = locator_.locate(x + q, prev, exitFace, false);
         if (c < 0)
         {
+            if
+            (
+                exitFace >= mesh_.nInternalFaces()
+             && procFace_[exitFace - mesh_.nInternalFaces()]
+            )
+            {
+                // in a neighbour processor's cells (or beyond): the walk
+                // goes on there (demCoupling::resolveRemote)
+                remote.append(remoteSample{x + q, exitFace, w});
+                ++nRemote;
+                continue;
+            }
+            // outside the mesh: counted in the host cell
             c = hostCell;
         }
         else
@@ -149,7 +182,7 @@ void Foam::voidageModels::divided::addWeights
         }
     }
     // make the sum exactly 1 (round-off of repeated additions)
-    scalar sum = 0;
+    scalar sum = nRemote*w;
     for (label k = start; k < cells.size(); ++k)
     {
         sum += weights[k];
@@ -157,5 +190,9 @@ void Foam::voidageModels::divided::addWeights
     for (label k = start; k < cells.size(); ++k)
     {
         weights[k] /= sum;
+    }
+    for (label k = remoteStart; k < remote.size(); ++k)
+    {
+        remote[k].w /= sum;
     }
 }

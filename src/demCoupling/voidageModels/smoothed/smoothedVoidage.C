@@ -32,7 +32,8 @@ Foam::voidageModels::smoothed::smoothed
 void Foam::voidageModels::smoothed::addWeights
 (
     const point& x, const scalar r, const label hostCell,
-    DynamicList<label>& cells, DynamicList<scalar>& weights
+    DynamicList<label>& cells, DynamicList<scalar>& weights,
+    DynamicList<remoteSample>&
 ) const
 {
     const label start = cells.size();
