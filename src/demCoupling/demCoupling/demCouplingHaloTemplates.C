@@ -7,43 +7,59 @@ Description
 
 \*---------------------------------------------------------------------------*/
 
-#include "PstreamBuffers.H"
+#include "UIPstream.H"
+#include "UOPstream.H"
 #include "UIndirectList.H"
 
 // * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
 
+namespace Foam
+{
+namespace demHalo
+{
+    //- Message tag of the halo exchanges (their own, so that they cannot
+    //  match other messages between the same processors)
+    constexpr int tag = 23011;
+}
+}
+
+
 template<class Type>
 Foam::List<Type> Foam::demCoupling::haloGet(const UList<Type>& f)
 {
+    // point to point: both sides know the sizes (haloSend_, haloStart_),
+    // so there is no exchange of message sizes
     List<Type> h(haloStart_.empty() ? 0 : haloStart_.last());
     if (!Pstream::parRun() || !haloAny_)
     {
         return h;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    PstreamBuffers pBufs(Pstream::commsTypes::nonBlocking);
-    forAll(haloSend_, r)
-    {
-        if (haloSend_[r].empty()) continue;
-        UOPstream os(r, pBufs);
-        os << List<Type>(UIndirectList<Type>(f, haloSend_[r]));
-    }
-    pBufs.finishedSends();
+    const label req0 = UPstream::nRequests();
     for (label r = 0; r < Pstream::nProcs(); ++r)
     {
         const label n = haloStart_[r+1] - haloStart_[r];
         if (!n) continue;
-        UIPstream is(r, pBufs);
-        List<Type> v;
-        is >> v;
-        if (v.size() != n)
-        {
-            FatalErrorInFunction
-                << "halo of processor " << r << ": " << v.size()
-                << " values for " << n << " slots" << abort(FatalError);
-        }
-        SubList<Type>(h, n, haloStart_[r]) = v;
+        UIPstream::read
+        (
+            Pstream::commsTypes::nonBlocking, r,
+            reinterpret_cast<char*>(h.data() + haloStart_[r]),
+            std::streamsize(n*sizeof(Type)), demHalo::tag
+        );
     }
+    List<List<Type>> out(Pstream::nProcs());
+    forAll(haloSend_, r)
+    {
+        if (haloSend_[r].empty()) continue;
+        out[r] = UIndirectList<Type>(f, haloSend_[r]);
+        UOPstream::write
+        (
+            Pstream::commsTypes::nonBlocking, r,
+            reinterpret_cast<const char*>(out[r].cdata()),
+            std::streamsize(out[r].size()*sizeof(Type)), demHalo::tag
+        );
+    }
+    UPstream::waitRequests(req0);
     tComm_ += std::chrono::duration<scalar>
     (
         std::chrono::steady_clock::now() - t0
@@ -60,31 +76,36 @@ void Foam::demCoupling::haloAdd(UList<Type>& f, const UList<Type>& acc)
         return;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    PstreamBuffers pBufs(Pstream::commsTypes::nonBlocking);
+    const label req0 = UPstream::nRequests();
+    List<List<Type>> in(Pstream::nProcs());
+    forAll(haloSend_, r)
+    {
+        if (haloSend_[r].empty()) continue;
+        in[r].setSize(haloSend_[r].size());
+        UIPstream::read
+        (
+            Pstream::commsTypes::nonBlocking, r,
+            reinterpret_cast<char*>(in[r].data()),
+            std::streamsize(in[r].size()*sizeof(Type)), demHalo::tag
+        );
+    }
     for (label r = 0; r < Pstream::nProcs(); ++r)
     {
         const label n = haloStart_[r+1] - haloStart_[r];
         if (!n) continue;
-        UOPstream os(r, pBufs);
-        os << List<Type>(SubList<Type>(acc, n, haloStart_[r]));
+        UOPstream::write
+        (
+            Pstream::commsTypes::nonBlocking, r,
+            reinterpret_cast<const char*>(acc.cdata() + haloStart_[r]),
+            std::streamsize(n*sizeof(Type)), demHalo::tag
+        );
     }
-    pBufs.finishedSends();
-    forAll(haloSend_, r)
+    UPstream::waitRequests(req0);
+    forAll(in, r)
     {
-        if (haloSend_[r].empty()) continue;
-        UIPstream is(r, pBufs);
-        List<Type> v;
-        is >> v;
-        if (v.size() != haloSend_[r].size())
+        forAll(in[r], k)
         {
-            FatalErrorInFunction
-                << "halo deposit of processor " << r << ": " << v.size()
-                << " values for " << haloSend_[r].size() << " cells"
-                << abort(FatalError);
-        }
-        forAll(v, k)
-        {
-            f[haloSend_[r][k]] += v[k];
+            f[haloSend_[r][k]] += in[r][k];
         }
     }
     tComm_ += std::chrono::duration<scalar>
