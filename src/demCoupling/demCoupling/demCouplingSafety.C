@@ -235,7 +235,7 @@ void Foam::demCoupling::progress(const bool force)
         os  << " communication " << label(100*tComm_/total + 0.5)
             << " % (most on one processor " << label(100*tComm/total + 0.5)
             << " %), particle volume across processors "
-            << returnReduce(haloParticleSteps_, sumOp<label>())
+            << int64_t(returnReduce(haloParticleSteps_, sumOp<scalar>()))
             << " particle-steps";
     }
     Info<< os.str().c_str() << endl;
