@@ -22,8 +22,6 @@ Description
 \*---------------------------------------------------------------------------*/
 
 #include "demCoupling.H"
-#include "processorPolyPatch.H"
-#include "processorCyclicPolyPatch.H"
 #include "Map.H"
 
 // * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
@@ -46,30 +44,18 @@ void Foam::demCoupling::resolveRemote
     }
     const auto t0 = std::chrono::steady_clock::now();
 
-    // the plain processor patch to each processor (processorCyclic faces
-    // end a walk, as a cyclic face does in serial)
+    // the processor patch to each processor through which walks go on
+    // (particleLocator::processorBehind)
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
     labelList patchTo(nProcs, -1);
     forAll(pbm, patchi)
     {
-        if (isA<processorPolyPatch>(pbm[patchi]) && !isA<processorCyclicPolyPatch>(pbm[patchi]))
+        if (pbm[patchi].size())
         {
-            patchTo[refCast<const processorPolyPatch>(pbm[patchi]).neighbProcNo()] = patchi;
+            const label r = locator_.processorBehind(pbm[patchi].start());
+            if (r >= 0) patchTo[r] = patchi;
         }
     }
-    // the processor behind face f and the face's index in that patch
-    auto behind = [&](const label f, label& pf) -> label
-    {
-        if (f < mesh_.nInternalFaces()) return -1;
-        const label patchi = pbm.whichPatch(f);
-        const polyPatch& pp = pbm[patchi];
-        if (!isA<processorPolyPatch>(pp) || isA<processorCyclicPolyPatch>(pp))
-        {
-            return -1;
-        }
-        pf = f - pp.start();
-        return refCast<const processorPolyPatch>(pp).neighbProcNo();
-    };
 
     // result per remote sample: the processor whose cell holds it (-1: no
     // cell, the host cell) and the cell (this processor) or its index in
@@ -122,8 +108,7 @@ void Foam::demCoupling::resolveRemote
         const label exitFace, const label hops
     )
     {
-        label pf = -1;
-        const label nbr = behind(exitFace, pf);
+        const label nbr = locator_.processorBehind(exitFace);
         if (nbr < 0 || hops >= maxHops)
         {
             answer(origin, k, -1);
@@ -131,7 +116,7 @@ void Foam::demCoupling::resolveRemote
         }
         qOrig[nbr].append(origin);
         qIdx[nbr].append(k);
-        qFace[nbr].append(pf);
+        qFace[nbr].append(exitFace - pbm[patchTo[nbr]].start());
         qHops[nbr].append(hops + 1);
         qPt[nbr].append(p);
     };
@@ -213,6 +198,14 @@ void Foam::demCoupling::resolveRemote
         haloSend_[r].transfer(serve[r]);
     }
     haloAny_ = returnReduce(haloStart_[nProcs] > 0, orOp<bool>());
+    tComm_ += std::chrono::duration<scalar>
+    (
+        std::chrono::steady_clock::now() - t0
+    ).count();
+    if (remote.empty())
+    {
+        return;
+    }
 
     // the weights with the remote parts merged in, per particle
     const label n = wStart_.size() - 1;
@@ -258,11 +251,6 @@ void Foam::demCoupling::resolveRemote
     wStart_.transfer(start);
     wCells_.transfer(cells);
     wValues_.transfer(values);
-
-    tComm_ += std::chrono::duration<scalar>
-    (
-        std::chrono::steady_clock::now() - t0
-    ).count();
 }
 
 

@@ -1,12 +1,24 @@
 #include "particleLocator.H"
+#include "processorPolyPatch.H"
+#include "processorCyclicPolyPatch.H"
 
 Foam::particleLocator::particleLocator(const polyMesh& mesh, const label maxWalk)
 :
     mesh_(mesh),
     maxWalk_(maxWalk),
     nWalk_(0),
-    nGlobal_(0)
-{}
+    nGlobal_(0),
+    faceProc_(mesh.nBoundaryFaces(), -1)
+{
+    for (const polyPatch& pp : mesh.boundaryMesh())
+    {
+        if (isA<processorPolyPatch>(pp) && !isA<processorCyclicPolyPatch>(pp))
+        {
+            const label r = refCast<const processorPolyPatch>(pp).neighbProcNo();
+            SubList<label>(faceProc_, pp.size(), pp.start() - mesh.nInternalFaces()) = r;
+        }
+    }
+}
 
 
 Foam::label Foam::particleLocator::exitFace

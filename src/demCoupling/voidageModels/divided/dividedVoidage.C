@@ -1,8 +1,6 @@
 #include "dividedVoidage.H"
 #include "addToRunTimeSelectionTable.H"
 #include "FixedList.H"
-#include "processorPolyPatch.H"
-#include "processorCyclicPolyPatch.H"
 
 namespace Foam
 {
@@ -44,20 +42,6 @@ Foam::voidageModels::divided::divided
         }
     }
     samples_.transfer(pts);
-
-    // processor faces (not processorCyclic: a serial run stops its walk at
-    // a cyclic face as at any boundary face)
-    procFace_.setSize(mesh_.nBoundaryFaces(), false);
-    for (const polyPatch& pp : mesh_.boundaryMesh())
-    {
-        if (isA<processorPolyPatch>(pp) && !isA<processorCyclicPolyPatch>(pp))
-        {
-            forAll(pp, i)
-            {
-                procFace_[pp.start() + i - mesh_.nInternalFaces()] = true;
-            }
-        }
-    }
 }
 
 
@@ -146,11 +130,7 @@ void Foam::voidageModels::divided::addWeights
         label c = locator_.locate(x + q, prev, exitFace, false);
         if (c < 0)
         {
-            if
-            (
-                exitFace >= mesh_.nInternalFaces()
-             && procFace_[exitFace - mesh_.nInternalFaces()]
-            )
+            if (locator_.processorBehind(exitFace) >= 0)
             {
                 // in a neighbour processor's cells (or beyond): the walk
                 // goes on there (demCoupling::resolveRemote)
