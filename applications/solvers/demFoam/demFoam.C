@@ -28,6 +28,7 @@ Description
 #include "pimpleControl.H"
 #include "fvOptions.H"
 #include "demCoupling.H"
+#include "signalRequests.H"
 #include <chrono>
 #include <csetjmp>
 #include <csignal>
@@ -61,6 +62,7 @@ int main(int argc, char *argv[])
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
     #include "createTime.H"
+    demFoamSignals::watch();
     #include "createMesh.H"
     #include "createControl.H"
     #include "createTimeControls.H"
@@ -80,6 +82,17 @@ int main(int argc, char *argv[])
     const label iStart = runTime.timeIndex();
     const label injectFluidNaN = demCoupling::injectedStep("fluidNaN");
     const label injectFpe = demCoupling::injectedStep("fpe");
+    // processor p raises the stop signal on itself in step N + p, after the
+    // step's requests were taken: a signal that reaches the processors in
+    // different steps
+    const label injectLateSignal = demCoupling::injectedStep("lateSignal");
+    if (injectLateSignal >= 0 && !sigStopAtWriteNow::active())
+    {
+        FatalErrorInFunction
+            << "DEMFOAM_DEBUG_INJECT=lateSignal@" << injectLateSignal
+            << " needs OptimisationSwitches { stopAtWriteNowSignal N; } in "
+            << runTime.controlDict().name() << exit(FatalError);
+    }
     volatile scalar tGood = runTime.value();
     volatile label iGood = runTime.timeIndex();
     #include "writeLastGood.H"
@@ -114,6 +127,33 @@ int main(int argc, char *argv[])
         ++runTime;
 
         Info<< "Time = " << runTime.timeName() << nl << endl;
+
+        // requests by signal, taken here on every processor
+        demFoamSignals::watch();
+        const label requests = demFoamSignals::take();
+        if (requests & demFoamSignals::requestStop)
+        {
+            Info<< "demFoam: stop signal (stopAtWriteNowSignal "
+                << sigStopAtWriteNow::signalNumber() << "): writing t = "
+                << runTime.timeName() << " and stopping" << nl << endl;
+            runTime.setEndTime(runTime.value());
+        }
+        if (requests & demFoamSignals::requestWrite)
+        {
+            Info<< "demFoam: write signal (writeNowSignal "
+                << sigWriteNow::signalNumber() << "): writing t = "
+                << runTime.timeName() << nl << endl;
+            dem.writeThisStep();
+        }
+        if
+        (
+            injectLateSignal >= 0
+         && runTime.timeIndex() - iStart
+         == injectLateSignal + Pstream::myProcNo()
+        )
+        {
+            std::raise(sigStopAtWriteNow::signalNumber());
+        }
 
         // The DEM part of the step, with the fluid fields of the last step
         {
@@ -184,9 +224,13 @@ int main(int argc, char *argv[])
         }
         if (writeStep && !runTime.writeTime())
         {
-            // the last step, endTime off the write grid
-            Info<< "demFoam: endTime " << runTime.endTime().value()
-                << " is off the write grid; writing the final state" << endl;
+            // the last step with endTime off the write grid, or a request
+            if (!requests)
+            {
+                Info<< "demFoam: endTime " << runTime.endTime().value()
+                    << " is off the write grid; writing the final state"
+                    << endl;
+            }
             runTime.writeNow();
         }
         else

@@ -230,6 +230,7 @@ Foam::demCoupling::demCoupling
     progressInterval_ = dict_.getOrDefault<scalar>("progressInterval", 60);
     progressSteps_ = dict_.getOrDefault<label>("progressSteps", 0);
     nSteps_ = 0;
+    writeRequested_ = -1;
     startTime_ = mesh.time().value();
     injectParticleNaN_ = injectedStep("particleNaN");
 
@@ -1357,6 +1358,7 @@ bool Foam::demCoupling::writeStep() const
     const Time& t = mesh_.time();
     return
         t.writeTime()
+     || t.timeIndex() == writeRequested_
      || t.value() >= t.endTime().value() - 0.5*t.deltaTValue();
 }
 
