@@ -26,6 +26,14 @@ Foam::voidageModels::smoothed::smoothed
             << nLayers_ << " (allowed 0..3), bandwidthFactor "
             << bandwidthFactor_ << " (allowed > 0)" << exit(FatalIOError);
     }
+    if (Pstream::parRun())
+    {
+        WarningInFunction
+            << "voidageModel smoothed in a decomposed run: its kernel layers"
+            << " stop at processor boundaries, so eps and the forces next to"
+            << " them depend on the decomposition (docs/parallel.md, Known"
+            << " limitations); divided and centre do not" << endl;
+    }
 }
 
 
