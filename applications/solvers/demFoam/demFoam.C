@@ -28,6 +28,7 @@ Description
 #include "pimpleControl.H"
 #include "fvOptions.H"
 #include "demCoupling.H"
+#include "timeCompletion.H"
 #include "signalRequests.H"
 #include <chrono>
 #include <csetjmp>
@@ -62,6 +63,8 @@ int main(int argc, char *argv[])
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
     #include "createTime.H"
+    // a start from a half-written time stops here, before any field is read
+    timeCompletion::checkStart(runTime);
     demFoamSignals::watch();
     #include "createMesh.H"
     #include "createControl.H"
@@ -133,8 +136,8 @@ int main(int argc, char *argv[])
         const label requests = demFoamSignals::take();
         if (requests & demFoamSignals::requestStop)
         {
-            Info<< "demFoam: stop signal (stopAtWriteNowSignal "
-                << sigStopAtWriteNow::signalNumber() << "): writing t = "
+            Info<< "demFoam: stop signal (" << demFoamSignals::stopSignal().c_str()
+                << "): writing t = "
                 << runTime.timeName() << " and stopping" << nl << endl;
             runTime.setEndTime(runTime.value());
         }
@@ -236,6 +239,11 @@ int main(int argc, char *argv[])
         else
         {
             runTime.write();
+        }
+        if (runTime.writeTime())
+        {
+            // last: the time is complete (a restart may start from it)
+            timeCompletion::mark(runTime);
         }
 
         runTime.printExecutionTime(Info);

@@ -1,4 +1,5 @@
 #include "demCoupling.H"
+#include "timeCompletion.H"
 #include "demCouplingTools.H"
 #include "OStringStream.H"
 #include <limits>
@@ -286,7 +287,14 @@ Foam::demCoupling::demCoupling
     addWalls();
     addOutletsAndInlets();
 
-    if (!restoreState(mesh.time().timePath()/"uniform"))
+    if
+    (
+        !restoreState
+        (
+            mesh.time().timePath()/"uniform",
+            timeCompletion::isInitial(mesh.time())
+        )
+    )
     {
         // decomposed: every processor creates (and settles) the whole set,
         // then keeps the particles in its cells

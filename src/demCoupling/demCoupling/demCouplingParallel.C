@@ -108,7 +108,7 @@ Foam::fileName Foam::demCoupling::stateFile(const fileName& dir) const
 }
 
 
-bool Foam::demCoupling::restoreState(const fileName& dir)
+bool Foam::demCoupling::restoreState(const fileName& dir, const bool initial)
 {
     const fileName own(stateFile(dir));
     const fileName serial(dir/"demState.bin");
@@ -138,7 +138,21 @@ bool Foam::demCoupling::restoreState(const fileName& dir)
                     << exit(FatalError);
             }
         }
-        return false;
+        if (initial)
+        {
+            return false;
+        }
+        // a later time without the particles: re-inserting a fresh bed
+        // under that time's fluid would run silently wrong
+        FatalErrorInFunction
+            << "the start time " << dir.path() << " has no DEM state "
+            << "(missing " << own << "): a start from any time but the "
+            << "case's initial one continues the particles written there, "
+            << "and only the initial time inserts them.  Start from a "
+            << "time written by demFoam (its uniform/ holds "
+            << own.name() << " and demCouplingState.bin), or, to put new "
+            << "particles into a flow computed without them, make that "
+            << "time the case's first time directory" << exit(FatalError);
     }
 
     const fileName state(haveOwn ? own : serial);
@@ -159,10 +173,16 @@ bool Foam::demCoupling::restoreState(const fileName& dir)
         distributeByCell();
     }
     const fileName cpl(dir/"demCouplingState.bin");
-    if (isFile(cpl))
+    if (!returnReduce(isFile(cpl), andOp<bool>()))
     {
-        readCouplingState(cpl, haveSerial);
+        FatalErrorInFunction
+            << "the start time " << dir.path() << " has the DEM state "
+            << state.name() << " but no " << cpl << " (the coupling's "
+            << "history: fluid velocity at the particles, time averages), "
+            << "without which the restart is not exact; start from a time "
+            << "written completely by demFoam" << exit(FatalError);
     }
+    readCouplingState(cpl, haveSerial);
     return true;
 }
 
@@ -175,7 +195,9 @@ Foam::labelList Foam::demCoupling::cellOwners() const
     labelList owner(n, none);
     for (label i = 0; i < n; ++i)
     {
-        if (mesh_.findCell(wrapped(a, i), polyMesh::FACE_DIAG_TRIS) >= 0)
+        // the run's own test (particleLocator::inside), so that a particle
+        // accepted here is found by the first locate and vice versa
+        if (locator_.inside(wrapped(a, i)))
         {
             owner[i] = Pstream::myProcNo();
         }

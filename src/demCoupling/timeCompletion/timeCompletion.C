@@ -1,0 +1,101 @@
+#include "timeCompletion.H"
+#include "OFstream.H"
+#include "Pstream.H"
+#include "PstreamReduceOps.H"
+
+namespace
+{
+
+// The case's times (without constant/), sorted
+Foam::instantList caseTimes(const Foam::Time& runTime)
+{
+    Foam::instantList all(runTime.times());
+    Foam::DynamicList<Foam::instant> t(all.size());
+    for (const Foam::instant& i : all)
+    {
+        if (i.name() != runTime.constant()) t.append(i);
+    }
+    return Foam::instantList(std::move(t));
+}
+
+} // End anonymous namespace
+
+
+const Foam::word& Foam::timeCompletion::markerName()
+{
+    static const word name("demWriteComplete");
+    return name;
+}
+
+
+bool Foam::timeCompletion::isComplete(const fileName& timeDir)
+{
+    return isFile(timeDir/"uniform"/markerName());
+}
+
+
+void Foam::timeCompletion::mark(const Time& runTime)
+{
+    // every processor has written its part before any marks the time
+    if (Pstream::parRun())
+    {
+        label written = 1;
+        reduce(written, sumOp<label>());
+    }
+    const fileName dir(runTime.timePath()/"uniform");
+    mkDir(dir);
+    OFstream os(dir/markerName());
+    os  << "// demFoam: every field, the cloud and the DEM state of time "
+        << runTime.timeName() << " are written" << nl;
+}
+
+
+bool Foam::timeCompletion::isInitial(const Time& runTime)
+{
+    const instantList t(caseTimes(runTime));
+    const bool first =
+        t.empty() || t.first().equal(runTime.value());
+    return returnReduce
+    (
+        first && !isComplete(runTime.timePath()), andOp<bool>()
+    );
+}
+
+
+void Foam::timeCompletion::checkStart(const Time& runTime)
+{
+    const instantList t(caseTimes(runTime));
+    const bool first = t.empty() || t.first().equal(runTime.value());
+    const bool ok = first || isComplete(runTime.timePath());
+    if (returnReduce(ok, andOp<bool>()))
+    {
+        return;
+    }
+
+    // the latest complete time before the start, on this processor
+    word lastComplete;
+    for (const instant& i : t)
+    {
+        if (i.value() < runTime.value() && isComplete(runTime.path()/i.name()))
+        {
+            lastComplete = i.name();
+        }
+    }
+    FatalErrorInFunction
+        << "the start time " << runTime.timePath() << " is incomplete: it "
+        << "has no uniform/" << markerName() << ", which demFoam writes "
+        << "after every field, the cloud and the DEM state of a time (a "
+        << "run stopped or killed while writing it, or a time not written "
+        << "by demFoam).  "
+        << (
+               lastComplete.empty()
+             ? std::string("There is no complete time before it")
+             : "The last complete time is " + lastComplete
+           ).c_str()
+        << ": delete " << runTime.timeName() << " (and any later time) and "
+        << "start again (startFrom latestTime), or set startTime to a "
+        << "complete time" << exit(FatalError);
+}
+
+
+// ************************************************************************* //
