@@ -29,6 +29,7 @@ Description
 #include "fvOptions.H"
 #include "demCoupling.H"
 #include "timeCompletion.H"
+#include "processorDirs.H"
 #include "signalRequests.H"
 #include <chrono>
 #include <csetjmp>
@@ -63,7 +64,9 @@ int main(int argc, char *argv[])
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
     #include "createTime.H"
-    // a start from a half-written time stops here, before any field is read
+    // a decomposition that does not fit, or a start from a half-written
+    // time, stops here, before the mesh or any field is read
+    checkProcessorDirs(runTime);
     timeCompletion::checkStart(runTime);
     demFoamSignals::watch();
     #include "createMesh.H"

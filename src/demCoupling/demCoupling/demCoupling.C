@@ -1,5 +1,6 @@
 #include "demCoupling.H"
 #include "timeCompletion.H"
+#include "dictionaryFileCheck.H"
 #include "demCouplingTools.H"
 #include "OStringStream.H"
 #include <limits>
@@ -136,6 +137,13 @@ Foam::demCoupling::demCoupling
 :
     mesh_(mesh),
     readTraps_(),
+    fileChecked_
+    (
+        dictionaryFileCheck
+        (
+            IOobject("demProperties", mesh.time().constant(), mesh)
+        )
+    ),
     dict_
     (
         IOobject

@@ -211,10 +211,15 @@ void Foam::demCoupling::progress(const bool force)
 
     const scalar tComm = returnReduce(tComm_, maxOp<scalar>());
     const scalar total = max(tDem_ + tCoupling_ + tFluid_ + tComm_, VSMALL);
+    // percent done, rounded down; 100 only at the last step (the time
+    // summed from the steps may end a rounding error below endTime)
+    const bool last = tEnd - t < 0.5*runTime.deltaTValue();
+    const label percent =
+        last ? 100
+      : min(label(100*(t - startTime_)/max(tEnd - startTime_, VSMALL)), 99);
     OStringStream os;
     os  << "progress: t = " << t << " s of " << tEnd << " ("
-        << label(100*(t - startTime_)/max(tEnd - startTime_, VSMALL))
-        << " %), wall " << hms(wall).c_str() << ", to the end ~"
+        << percent << " %), wall " << hms(wall).c_str() << ", to the end ~"
         << hms(eta).c_str()
         << ", particles " << nAll
         << " (inserted " << nInserted << ", removed";
