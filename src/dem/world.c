@@ -198,6 +198,19 @@ dem_status dem_world_configure(dem_world *w, const dem_config *c)
 
 size_t  dem_world_count(const dem_world *w) { return w ? w->n : 0; }
 double  dem_world_time(const dem_world *w) { return w ? w->time : 0.0; }
+
+dem_status dem_world_set_time(dem_world *w, double t)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (!isfinite(t)) return DEM_FAIL(w, DEM_ERR_RANGE, "set_time: t = %g; allowed a finite time", t);
+    /* moving walls keep their position: their reference times move with the clock */
+    const double shift = t - w->time;
+    for (int p = 0; p < w->nplanes; ++p) w->planes[p].t0 += shift;
+    for (int m = 0; m < w->nmeshes; ++m) w->meshes[m].t0 += shift;
+    w->t_build += shift;
+    w->time = t;
+    return DEM_OK;
+}
 int64_t dem_world_step_count(const dem_world *w) { return w ? w->step : 0; }
 int64_t dem_world_reorder_count(const dem_world *w) { return w ? w->reorders : 0; }
 

@@ -171,6 +171,9 @@ typedef struct {
 dem_status dem_world_arrays(dem_world *w, dem_arrays *a);
 size_t     dem_world_count(const dem_world *w);     /* owned particles */
 double     dem_world_time(const dem_world *w);
+/** Added: set the clock (e.g. to the fluid solver's time); walls keep their
+ *  current positions, inlets' start/end times are read on this clock. */
+dem_status dem_world_set_time(dem_world *w, double t);
 int64_t    dem_world_step_count(const dem_world *w);
 /** Added: incremented whenever the storage order of particles changes (spatial
  *  sort during dem_world_step, insertion, removal); cache index-keyed data

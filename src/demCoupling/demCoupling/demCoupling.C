@@ -188,7 +188,7 @@ Foam::demCoupling::demCoupling
     haloStart_(2, Zero),
     haloAny_(false),
     haloParticleSteps_(0),
-    bedEta_(0),
+    bedEta_{0, 0, 0},
     balanceFluid_(0),
     balanceParticle_(0),
     balanceFluidVec_(Zero),
@@ -230,7 +230,7 @@ Foam::demCoupling::demCoupling
     snapSize_ = 0;
     snapCapacity_ = 0;
     snapLostUnknown_ = 0;
-    snapBedEta_ = 0;
+    snapBedEta_ = bedEta_;
     snapIndexUprev_ = -2;
     snapG_ = Zero;
     wallStart_ = std::chrono::steady_clock::now();
@@ -292,34 +292,48 @@ Foam::demCoupling::demCoupling
     subSteps(mesh.time().deltaTValue());
 
     configureWorld();
+    // the DEM clock is the fluid's (inlet start and end times, removal
+    // times, messages); settling runs on it before the start time
+    const scalar t0 = mesh.time().value();
+    const bool initial = timeCompletion::isInitial(mesh.time());
+    const scalar tSettle =
+        initial ? dict_.getOrDefault<scalar>("settlingTime", 0) : 0;
+    const int64_t nSettle = int64_t(tSettle/demDt_ + 0.5);
+    world_.check
+    (
+        dem_world_set_time(world_, t0 - nSettle*demDt_), "dem_world_set_time"
+    );
     addWalls();
     addOutletsAndInlets();
 
-    if
-    (
-        !restoreState
-        (
-            mesh.time().timePath()/"uniform",
-            timeCompletion::isInitial(mesh.time())
-        )
-    )
+    if (!restoreState(mesh.time().timePath()/"uniform", initial))
     {
         // decomposed: every processor creates (and settles) the whole set,
         // then keeps the particles in its cells
         addInitialParticles();
         checkInitialState();
         if (checkOnly) return;
-        const scalar tSettle = dict_.getOrDefault<scalar>("settlingTime", 0);
-        if (tSettle > 0)
+        if (nSettle > 0)
         {
-            const int64_t n = int64_t(tSettle/demDt_ + 0.5);
-            Info<< "demCoupling: settling " << n << " DEM steps ("
-                << tSettle << " s) without fluid"
+            Info<< "demCoupling: settling " << nSettle << " DEM steps ("
+                << tSettle << " s, DEM time " << t0 - nSettle*demDt_
+                << " to " << t0 << ") without fluid"
                 << (Pstream::parRun() ? " (every processor the whole set)" : "")
                 << endl;
-            world_.step(n, "dem_world_step (settling)");
+            world_.step(nSettle, "dem_world_step (settling, before the fluid starts)");
         }
+        // exactly the fluid's (the sum of the steps may differ by round-off)
+        world_.check(dem_world_set_time(world_, t0), "dem_world_set_time");
         distributeByCell();
+    }
+    else if (mag(dem_world_time(world_) - t0) > 0.5*demDt_)
+    {
+        // a state written before the clocks were one (it ran ahead by its
+        // settling time); a state of this version is kept as it is, so that
+        // the restart is exact
+        Info<< "demCoupling: the DEM state's clock " << dem_world_time(world_)
+            << " s is set to the fluid's " << t0 << " s" << endl;
+        world_.check(dem_world_set_time(world_, t0), "dem_world_set_time");
     }
     if (checkOnly) return;
 
@@ -343,6 +357,10 @@ Foam::demCoupling::demCoupling
         << ", drag " << dict_.get<word>("dragModel")
         << (cellMeanDrag_ ? " (cell-mean)" : " (per particle)")
         << ", solid volume " << solidVolumeParticles_ << " m3" << nl << endl;
+
+    // the progress estimate counts the coupled steps only (not the
+    // settling and set-up before them)
+    wallStart_ = std::chrono::steady_clock::now();
 }
 
 
@@ -1610,7 +1628,7 @@ void Foam::demCoupling::evolve
     vector sumDrag(Zero), sumGradP(Zero), sumTau(Zero);
     scalar sumMagParticle = 0;
     scalar etaSum = 0;
-    label etaN = 0;
+    label etaN = 0, etaAll = 0;
     scalarField etaCell(mesh_.nCells(), 0);
     scalarField wCell(mesh_.nCells(), 0);
     const label nHalo = haloStart_.last();
@@ -1690,8 +1708,16 @@ void Foam::demCoupling::evolve
             fGP[s] - fd*(1 - e)/e + divTauP[s] + rhof_*Vp*g_;
         const vector fTotal = fd/e - rhof_*Vp*g_ + fResid;
         etaP_[j] = 100*mag(fResid)/max(mag(fTotal), VSMALL);
-        etaSum += etaP_[j];
-        ++etaN;
+        // the bed average takes the particles that the fluid carries in
+        // part at least: where its total force is below a tenth of the
+        // weight (a bed at rest, no flow yet) the ratio is noise
+        // (docs/forces.md, "The applicability index eta")
+        if (mag(fTotal) >= etaMinForceRatio*a.density[j]*Vp*mag(g_))
+        {
+            etaSum += etaP_[j];
+            ++etaN;
+        }
+        ++etaAll;
 
         deposit(s, exch, Fc, FcHalo);
         deposit(s, Ksum[s], Kcell, KcellHalo);
@@ -1711,6 +1737,7 @@ void Foam::demCoupling::evolve
         reduce(sumMagParticle, sumOp<scalar>());
         reduce(etaSum, sumOp<scalar>());
         reduce(etaN, sumOp<label>());
+        reduce(etaAll, sumOp<label>());
     }
     if (nSeen != n)
     {
@@ -1719,7 +1746,7 @@ void Foam::demCoupling::evolve
             << "demFoam books outlets itself and expects none"
             << exit(FatalError);
     }
-    bedEta_ = etaN ? etaSum/etaN : 0;
+    bedEta_ = {etaN ? etaSum/etaN : 0, etaN, etaAll};
 
     // fluid momentum source S = -F + (1 - c_p) grad p - (1 - c_tau) div tau,
     // 1 - c from the solid fraction of the same weights (exact, unclipped)

@@ -36,17 +36,30 @@ void Foam::demCoupling::report(const bool full) const
         Info<< " (ramping in " << solidVolumeRamp_ << ", "
             << label(rampStart_.size()) << " particles)";
     }
-    Info<< nl
-        << "demCoupling: bed-average eta " << bedEta_ << " %" << endl;
+    Info<< nl;
+    if (bedEta_.n)
+    {
+        Info<< "demCoupling: bed-average eta " << bedEta_.mean << " % ("
+            << bedEta_.n << " of " << bedEta_.all << " particles: those "
+            << "whose fluid force is at least " << 100*etaMinForceRatio
+            << " % of their weight)" << endl;
+    }
+    else
+    {
+        Info<< "demCoupling: bed-average eta: none (no particle's fluid "
+            << "force is " << 100*etaMinForceRatio << " % of its weight)"
+            << endl;
+    }
 
     if
     (
         formulation_->type() == "setIII"
-     && bedEta_ > etaWarning_
+     && bedEta_.n
+     && bedEta_.mean > etaWarning_
     )
     {
         WarningInFunction
-            << "set III with bed-average eta " << bedEta_
+            << "set III with bed-average eta " << bedEta_.mean
             << " % above etaWarning " << etaWarning_ << " %: set III assumes "
             << "negligible fluid acceleration ([Z] 2.10); use setI or setII"
             << endl;
