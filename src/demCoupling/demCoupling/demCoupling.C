@@ -1,6 +1,7 @@
 #include "demCoupling.H"
 #include "timeCompletion.H"
 #include "dictionaryFileCheck.H"
+#include "insertionRegion.H"
 #include "demCouplingTools.H"
 #include "OStringStream.H"
 #include <limits>
@@ -1028,10 +1029,9 @@ void Foam::demCoupling::addInitialParticles()
             Info<< "demCoupling: " << e.keyword() << ": " << ps.size()
                 << " particles from a list" << endl;
         }
-        else if (type == "box")
+        else if (type == "box" || type == "cylinder")
         {
-            const point lo(d.get<point>("min"));
-            const point hi(d.get<point>("max"));
+            // box or cylinder, optionally cut to the mesh (insertionRegion)
             const label n = d.get<label>("number");
             PtrList<scalarField> store;
             dem_particle_template t;
@@ -1039,30 +1039,37 @@ void Foam::demCoupling::addInitialParticles()
             t.density = readDistribution(d, "density", store);
             t.material = mat;
             for (direction k = 0; k < 3; ++k) t.velocity[k] = v[k];
+            const insertionRegion region
+            (
+                d, locator_, 0.5*distributionMax(t.diameter)
+            );
+            const point lo(region.bounds().min()), hi(region.bounds().max());
             size_t inserted = 0;
             const dem_status s = dem_world_fill_box
             (
-                world_, lo.cdata(), hi.cdata(), nullptr, nullptr, size_t(n),
-                &t, &inserted
+                world_, lo.cdata(), hi.cdata(), &insertionRegion::inside,
+                const_cast<insertionRegion*>(&region), size_t(n), &t,
+                &inserted
             );
             if (s == DEM_ERR_FULL)
             {
                 FatalIOErrorInFunction(d)
                     << "initialParticles/" << e.keyword() << " in "
                     << d.name() << ": only " << label(inserted) << " of "
-                    << n << " particles fit into the box " << lo << " "
-                    << hi << "; enlarge the box or lower number"
+                    << n << " particles fit into the "
+                    << region.describe().c_str()
+                    << "; enlarge the region or lower number"
                     << exit(FatalIOError);
             }
             world_.check(s, "dem_world_fill_box");
             Info<< "demCoupling: " << e.keyword() << ": " << label(inserted)
-                << " particles in box " << lo << " " << hi << endl;
+                << " particles in " << region.describe().c_str() << endl;
         }
         else
         {
             FatalIOErrorInFunction(d)
                 << "initialParticles/" << e.keyword() << "/type " << type
-                << " in " << d.name() << ": allowed box, list"
+                << " in " << d.name() << ": allowed box, cylinder, list"
                 << exit(FatalIOError);
         }
     }

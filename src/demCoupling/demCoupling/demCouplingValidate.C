@@ -528,6 +528,8 @@ bool Foam::demCoupling::checkDictionary
             num("WenYuExponent", kind::Scalar, 0, inf, false, false)})},
         {"SchillerNaumannCoeffs", List<keySpec>({
             num("voidageExponent", kind::Scalar, -inf, inf, false, false)})},
+        {"StokesCoeffs", List<keySpec>({
+            num("voidageExponent", kind::Scalar, -inf, inf, false, false)})},
         {"DiFeliceCoeffs", List<keySpec>()},
         {"BeetstraCoeffs", List<keySpec>()},
         {"centreCoeffs", List<keySpec>()},
@@ -669,10 +671,14 @@ bool Foam::demCoupling::checkDictionary
                          "expected a dictionary name { type box; ... }");
             }
             const dictionary& d = e.dict();
-            const wordList types({"box", "list"});
+            const wordList types({"box", "cylinder", "list"});
             chk.require(d, sc, "type", listText(types));
             chk.check(d, sc, List<keySpec>({choice("type", types)
                 , any("min", kind::Vector), any("max", kind::Vector)
+                , any("base", kind::Vector), any("axis", kind::Vector)
+                , num("radius", kind::Scalar, 0, inf, true, false)
+                , num("length", kind::Scalar, 0, inf, true, false)
+                , any("insideMesh", kind::Bool)
                 , num("number", kind::Label, 1, inf, false, false)
                 , any("positions", kind::List)
                 , dist("diameter"), dist("density")
@@ -683,16 +689,21 @@ bool Foam::demCoupling::checkDictionary
             (
                 type == "box"
               ? wordList({"min", "max", "number", "diameter", "density", "material"})
+              : type == "cylinder"
+              ? wordList({"base", "axis", "radius", "length", "number", "diameter", "density", "material"})
               : wordList({"positions", "diameter", "density", "material"})
             );
             for (const word& k : need)
             {
                 chk.require(d, sc, k, "for type " + type);
             }
-            if (type == "box")
+            if (type == "box" || type == "cylinder")
             {
                 checkDistribution(chk, d, sc, "diameter");
                 checkDistribution(chk, d, sc, "density");
+            }
+            if (type == "box")
+            {
                 const vector lo(d.get<vector>("min")), hi(d.get<vector>("max"));
                 if (lo.x() >= hi.x() || lo.y() >= hi.y() || lo.z() >= hi.z())
                 {
@@ -701,7 +712,15 @@ bool Foam::demCoupling::checkDictionary
                     chk.fail(d, sc, "max", os.str(), "allowed max > min in every component");
                 }
             }
-            else
+            else if (type == "cylinder" && mag(d.get<vector>("axis")) < VSMALL)
+            {
+                chk.fail(d, sc, "axis", "(0 0 0)", "allowed a non-zero vector (its direction is the cylinder's axis)");
+            }
+            else if (type == "list" && d.found("insideMesh"))
+            {
+                chk.fail(d, sc, "insideMesh", "", "only for type box or cylinder (a list's centres must all be inside the mesh)");
+            }
+            if (type == "list")
             {
                 for (const char* k : {"diameter", "density", "angularVelocity"})
                 {

@@ -1,0 +1,28 @@
+#include "Stokes.H"
+#include "addToRunTimeSelectionTable.H"
+#include "mathematicalConstants.H"
+
+namespace Foam
+{
+namespace dragModels
+{
+    defineTypeNameAndDebug(Stokes, 0);
+    addToRunTimeSelectionTable(dragModel, Stokes, dictionary);
+}
+}
+
+Foam::dragModels::Stokes::Stokes(const dictionary& dict)
+:
+    dragModel(typeName, dict),
+    n_(coeffs_.getOrDefault<scalar>("voidageExponent", 1.0))
+{}
+
+
+Foam::scalar Foam::dragModels::Stokes::K
+(
+    const scalar d, const scalar eps, const scalar,
+    const scalar, const scalar muf
+) const
+{
+    return 3.0*constant::mathematical::pi*muf*d*pow(eps, 1.0 - n_);
+}
