@@ -222,7 +222,8 @@ Foam::demCoupling::demCoupling
     pCoeff_(fieldIO(mesh, "pressureCoeff", false), mesh,
             dimensionedScalar("one", dimless, 1.0), "zeroGradient"),
     tauCoeff_(fieldIO(mesh, "viscousCoeff", false), mesh,
-            dimensionedScalar("one", dimless, 1.0), "zeroGradient")
+            dimensionedScalar("one", dimless, 1.0), "zeroGradient"),
+    bed_(mesh, g.value())
 {
     readTraps_.release();
     failure_.clear();
@@ -1792,6 +1793,9 @@ void Foam::demCoupling::evolve
     locateAll();
     computeWeights();
     computeVoidage();
+
+    bed_.sample(world_.arrays(), eps_);
+    bed_.append();
 
     ++nSteps_;
     tCoupling_ +=

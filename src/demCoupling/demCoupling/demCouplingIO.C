@@ -37,6 +37,7 @@ void Foam::demCoupling::report(const bool full) const
             << label(rampStart_.size()) << " particles)";
     }
     Info<< nl;
+    bed_.report();
     if (bedEta_.n)
     {
         Info<< "demCoupling: bed-average eta " << bedEta_.mean << " % ("
