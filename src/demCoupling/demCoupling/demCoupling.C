@@ -322,7 +322,7 @@ Foam::demCoupling::demCoupling
                 << " to " << t0 << ") without fluid"
                 << (Pstream::parRun() ? " (every processor the whole set)" : "")
                 << endl;
-            world_.step(nSettle, "dem_world_step (settling, before the fluid starts)");
+            settle(nSettle);
         }
         // exactly the fluid's (the sum of the steps may differ by round-off)
         world_.check(dem_world_set_time(world_, t0), "dem_world_set_time");

@@ -169,6 +169,38 @@ Foam::label Foam::demCoupling::injectedStep(const word& kind)
 }
 
 
+void Foam::demCoupling::settle(const int64_t nSettle)
+{
+    // in pieces, with a progress line every progressInterval of wall time
+    // (the fluid's clock: the settling ends at the start time)
+    const auto w0 = std::chrono::steady_clock::now();
+    scalar wallLast = 0;
+    const int64_t piece = 1000;
+    for (int64_t done = 0; done < nSettle; )
+    {
+        const int64_t m = std::min(piece, nSettle - done);
+        world_.step(m, "dem_world_step (settling, before the fluid starts)");
+        done += m;
+        const scalar wall = std::chrono::duration<scalar>
+        (
+            std::chrono::steady_clock::now() - w0
+        ).count();
+        bool due = done < nSettle && wall - wallLast >= progressInterval_;
+        Pstream::scatter(due);
+        if (due)
+        {
+            wallLast = wall;
+            Info<< "progress: settling (DEM only), t = "
+                << dem_world_time(world_) << " s of "
+                << mesh_.time().value() << " (" << label(100*done/nSettle)
+                << " % of the settling), wall " << hms(wall).c_str()
+                << ", to its end ~"
+                << hms(wall*(nSettle - done)/done).c_str() << endl;
+        }
+    }
+}
+
+
 void Foam::demCoupling::progress(const bool force)
 {
     const scalar wall = std::chrono::duration<scalar>
