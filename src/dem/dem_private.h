@@ -238,6 +238,8 @@ int        dem_mass_ok(double radius, double density);
 int        dem_inertia_ok(double mass, double radius);
 dem_status dem_inlet_check(dem_world *w, const dem_inlet *in, const char *what);
 dem_status dem_config_check(dem_world *w, const dem_config *c);
+/* Whether m is rigid (DEM_RIGID) under the law */
+int dem_material_rigid(const dem_material *m, int law);
 dem_status dem_material_check(dem_world *w, const dem_material *m, const char *what, int law_check);
 void       dem_remove_index(dem_world *w, size_t i);
 dem_status dem_inlets_run(dem_world *w);

@@ -67,6 +67,9 @@ static dem_status check_template(dem_world *w, const dem_particle_template *t, d
     if (t->material < 0 || t->material >= w->nmat)
         return DEM_FAIL(w, DEM_ERR_NOTFOUND, "%s: template material = %d; allowed 0..%d (%d materials defined)",
                         fn, t->material, w->nmat - 1, w->nmat);
+    if (dem_material_rigid(&w->mat[t->material], w->cfg.contact_law))
+        return DEM_FAIL(w, DEM_ERR_ARG, "%s: template material %d is rigid (DEM_RIGID); allowed for walls only",
+                        fn, t->material);
     for (int k = 0; k < 3; ++k)
         if (!isfinite(t->velocity[k]))
             return DEM_FAIL(w, DEM_ERR_RANGE, "%s: template velocity[%d] = %g; must be finite", fn, k, t->velocity[k]);

@@ -280,9 +280,11 @@ dem_status dem_material_check(dem_world *w, const dem_material *m, const char *w
     if (!(m->rolling_friction >= 0.0) || !isfinite(m->rolling_friction))
         return DEM_FAIL(w, DEM_ERR_RANGE, "%s: rolling_friction = %g; allowed >= 0 and finite (a length)",
                         what, m->rolling_friction);
-    if (!isfinite(m->youngs_modulus) || !isfinite(m->stiffness_n) || !isfinite(m->stiffness_t))
+    /* +inf is DEM_RIGID */
+    if (isnan(m->youngs_modulus) || isnan(m->stiffness_n) || isnan(m->stiffness_t) ||
+        m->youngs_modulus == -INFINITY || m->stiffness_n == -INFINITY || m->stiffness_t == -INFINITY)
         return DEM_FAIL(w, DEM_ERR_RANGE, "%s: youngs_modulus = %g, stiffness_n = %g, stiffness_t = %g; "
-                        "must be finite", what, m->youngs_modulus, m->stiffness_n, m->stiffness_t);
+                        "must be finite (or DEM_RIGID)", what, m->youngs_modulus, m->stiffness_n, m->stiffness_t);
     if (isnan(m->restitution) || isnan(m->damping))
         return DEM_FAIL(w, DEM_ERR_RANGE, "%s: restitution = %g, damping = %g; give restitution in "
                         "(0, 1] or damping >= 0 (finite), the other < 0", what, m->restitution, m->damping);
@@ -338,14 +340,23 @@ dem_status dem_world_material_get(const dem_world *w, int id, dem_material *m)
     return DEM_OK;
 }
 
+int dem_material_rigid(const dem_material *m, int law)
+{
+    return isinf(law == DEM_CONTACT_HERTZ_MINDLIN ? m->youngs_modulus : m->stiffness_n);
+}
+
 /* Combined parameters of one material pair (combination rules of dem.h). */
 static void pair_compute(int law, const dem_material *a, double ea, double ca, const dem_material *b,
                          double eb, double cb, int like, dem_pair *q)
 {
     memset(q, 0, sizeof *q);
+    /* a rigid body does not deform: the other one's elasticity alone */
+    int ra = dem_material_rigid(a, law), rb = dem_material_rigid(b, law);
     q->mu = fmin(a->friction, b->friction);
     q->mu_r = fmin(a->rolling_friction, b->rolling_friction);
-    q->nu = 0.5 * (a->poisson_ratio + b->poisson_ratio);
+    q->nu = ra && !rb ? b->poisson_ratio : rb && !ra ? a->poisson_ratio : 0.5 * (a->poisson_ratio + b->poisson_ratio);
+    /* two rigid bodies never touch (walls only): no elastic constants */
+    if (ra && rb) return;
     q->mindlin = (2.0 - q->nu) / (2.0 * (1.0 - q->nu));
     if (law == DEM_CONTACT_HERTZ_MINDLIN) {
         q->estar = 1.0 / ((1.0 - a->poisson_ratio * a->poisson_ratio) / a->youngs_modulus +
@@ -359,8 +370,14 @@ static void pair_compute(int law, const dem_material *a, double ea, double ca, c
         q->k43_mind = q->k43 / q->mindlin;
         q->ct8 = q->ct * sqrt(8.0 * q->estar / q->mindlin);
     } else {
-        q->kn = like ? a->stiffness_n : a->stiffness_n * b->stiffness_n / (a->stiffness_n + b->stiffness_n);
-        q->kt = like ? a->stiffness_t : a->stiffness_t * b->stiffness_t / (a->stiffness_t + b->stiffness_t);
+        if (ra != rb) {
+            const dem_material *soft = ra ? b : a;
+            q->kn = soft->stiffness_n;
+            q->kt = soft->stiffness_t;
+        } else {
+            q->kn = like ? a->stiffness_n : a->stiffness_n * b->stiffness_n / (a->stiffness_n + b->stiffness_n);
+            q->kt = like ? a->stiffness_t : a->stiffness_t * b->stiffness_t / (a->stiffness_t + b->stiffness_t);
+        }
         if (ea > 0 && eb > 0) {
             q->e = fmin(ea, eb);
             q->beta = dem_lsd_beta(q->e);
@@ -544,6 +561,9 @@ dem_status dem_particle_check(dem_world *w, const dem_particle *p, const char *w
     if (p->material < 0 || p->material >= w->nmat)
         return DEM_FAIL(w, DEM_ERR_NOTFOUND, "%s: particle id %lld: material = %d; allowed 0..%d (%d materials "
                         "defined)", what, (long long)p->id, p->material, w->nmat - 1, w->nmat);
+    if (dem_material_rigid(&w->mat[p->material], w->cfg.contact_law))
+        return DEM_FAIL(w, DEM_ERR_ARG, "%s: particle id %lld: material %d is rigid (DEM_RIGID); allowed for "
+                        "walls only", what, (long long)p->id, p->material);
     for (int k = 0; k < 3; ++k)
         if (!isfinite(p->x[k]) || !isfinite(p->v[k]) || !isfinite(p->omega[k]))
             return DEM_FAIL(w, DEM_ERR_NAN, "%s: particle id %lld: x[%d] = %g, v[%d] = %g, omega[%d] = %g; "

@@ -378,12 +378,15 @@ static void bad_material(fz *F)
     case 3: m.restitution = coin(2) ? NAN : (coin(2) ? 1.0000001 : 0.0); m.damping = -1; break;
     case 4: m.restitution = 0.5; m.damping = 0.1; break;                /* both given */
     case 5: m.restitution = -1; m.damping = coin(2) ? -1 : (coin(2) ? NAN : INFINITY); break; /* neither */
-    case 6: if (F->law == DEM_CONTACT_HERTZ_MINDLIN) m.youngs_modulus = bad_nonpositive();
-            else m.stiffness_n = bad_nonpositive();
-            break;
-    case 7: m.youngs_modulus = coin(2) ? NAN : INFINITY; break;
+    case 6: { double b = bad_nonpositive();
+              if (b == INFINITY) b = -INFINITY;   /* DEM_RIGID is valid */
+              if (F->law == DEM_CONTACT_HERTZ_MINDLIN) m.youngs_modulus = b;
+              else m.stiffness_n = b;
+            } break;
+    /* (+INFINITY is DEM_RIGID, a valid wall material) */
+    case 7: m.youngs_modulus = coin(2) ? NAN : -INFINITY; break;
     case 8: m.stiffness_t = coin(2) ? NAN : -INFINITY; break;
-    default: m.stiffness_n = coin(2) ? NAN : INFINITY; break;
+    default: m.stiffness_n = coin(2) ? NAN : -INFINITY; break;
     }
     int id = -7;
     if (coin(3)) BAD("set_pair: bad material", dem_world_set_pair(W, (int)rn((size_t)F->nmat + 1), (int)rn((size_t)F->nmat + 1), &m));

@@ -111,10 +111,18 @@ dem_status dem_world_configure(dem_world *w, const dem_config *c);
  * unlike materials, the value itself for like ones.
  * Damping: give restitution in (0,1] and damping < 0, or damping >= 0 and
  * restitution < 0; the other is derived (dem_world_material_get). */
+/* A rigid material (walls only): youngs_modulus = DEM_RIGID (Hertz-Mindlin)
+ * or stiffness_n = DEM_RIGID (spring-dashpot laws).  A pair of a particle
+ * material p with it takes E* = E_p/(1 - nu_p^2), nu_p, and k_n, k_t of p
+ * (the rigid body does not deform); friction, rolling friction and
+ * restitution combine as for any pair (the smaller).  Particles of a rigid
+ * material are refused. */
+#define DEM_RIGID INFINITY
+
 typedef struct {
-    double youngs_modulus;   /* E [Pa] (Hertz laws) */
+    double youngs_modulus;   /* E [Pa] (Hertz laws); DEM_RIGID: rigid */
     double poisson_ratio;    /* nu in [0, 0.5) */
-    double stiffness_n;      /* k_n [N/m] (linear law) */
+    double stiffness_n;      /* k_n [N/m] (linear law); DEM_RIGID: rigid */
     double stiffness_t;      /* k_t [N/m] (linear law); <= 0: 2/7 k_n */
     double friction;         /* mu_s >= 0 */
     double rolling_friction; /* mu_r >= 0, a length [m] */

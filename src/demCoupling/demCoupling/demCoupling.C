@@ -514,6 +514,13 @@ void Foam::demCoupling::configureWorld()
         m.rolling_friction = md.getOrDefault<scalar>("rollingFriction", 0);
         m.restitution = md.getOrDefault<scalar>("restitution", -1);
         m.damping = md.getOrDefault<scalar>("damping", -1);
+        if (md.getOrDefault<bool>("rigid", false))
+        {
+            // a wall that does not deform (dem.h, DEM_RIGID)
+            m.youngs_modulus = DEM_RIGID;
+            m.stiffness_n = DEM_RIGID;
+            m.stiffness_t = DEM_RIGID;
+        }
         if (m.restitution < 0 && m.damping < 0)
         {
             FatalIOErrorInFunction(md)

@@ -372,7 +372,8 @@ List<keySpec> materialKeys()
         num("friction", kind::Scalar, 0, inf, false, false),
         num("rollingFriction", kind::Scalar, 0, inf, false, false),
         num("restitution", kind::Scalar, 0, 1, true, false),
-        num("damping", kind::Scalar, 0, inf, false, false)
+        num("damping", kind::Scalar, 0, inf, false, false),
+        any("rigid", kind::Bool)
     });
 }
 
@@ -598,6 +599,8 @@ bool Foam::demCoupling::checkDictionary
     // materials
     const dictionary& mats = dict.subDict("materials");
     wordList materialNames;
+    // rigid materials (rigid yes): for walls only
+    wordList rigidNames;
     for (const entry& e : mats)
     {
         if (!e.isDict())
@@ -613,6 +616,10 @@ bool Foam::demCoupling::checkDictionary
                      "missing; give restitution (0 < e <= 1) or damping (>= 0)");
         }
         materialNames.append(e.keyword());
+        if (e.dict().getOrDefault<bool>("rigid", false))
+        {
+            rigidNames.append(e.keyword());
+        }
     }
     if (materialNames.empty())
     {
@@ -738,6 +745,11 @@ bool Foam::demCoupling::checkDictionary
                 }
             }
             chk.checkName(d, sc, "material", d.get<word>("material"), materialNames, "material");
+            if (rigidNames.found(d.get<word>("material")))
+            {
+                chk.fail(d, sc, "material", d.get<word>("material"),
+                         "a material without rigid yes (rigid materials are for walls only)");
+            }
         }
     }
     if (dict.isDict("inlets"))
@@ -767,6 +779,11 @@ bool Foam::demCoupling::checkDictionary
             checkDistribution(chk, d, sc, "density");
             chk.checkName(d, sc, "patch", d.get<word>("patch"), patches, "patch in the mesh");
             chk.checkName(d, sc, "material", d.get<word>("material"), materialNames, "material");
+            if (rigidNames.found(d.get<word>("material")))
+            {
+                chk.fail(d, sc, "material", d.get<word>("material"),
+                         "a material without rigid yes (rigid materials are for walls only)");
+            }
         }
     }
 
