@@ -62,6 +62,7 @@ int main(int argc, char *argv[])
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
     #include "createTime.H"
+    #include "restoreTimeValue.H"
     demFoamSignals::watch();
     #include "createMesh.H"
     #include "createControl.H"
