@@ -316,6 +316,30 @@ dem_status dem_world_fill_cylinder(dem_world *w, const double base[3], const dou
 }
 
 /*--- inlets ------------------------------------------------------------------------*/
+/* d into a zeroed dst member by member (no padding bytes of the caller:
+ * the inlet goes into state files, which equal runs give byte-identical). */
+static void dist_copy(dem_distribution *dst, const dem_distribution *d)
+{
+    memset(dst, 0, sizeof *dst);
+    dst->kind = d->kind;
+    dst->a = d->a;
+    dst->b = d->b;
+    dst->n = d->n;
+    dst->values = d->values;
+    dst->weights = d->weights;
+}
+static void template_copy(dem_particle_template *dst, const dem_particle_template *t)
+{
+    memset(dst, 0, sizeof *dst);
+    dist_copy(&dst->diameter, &t->diameter);
+    dist_copy(&dst->density, &t->density);
+    dst->material = t->material;
+    memcpy(dst->velocity, t->velocity, sizeof dst->velocity);
+}
+_Static_assert(offsetof(dem_distribution, weights) + sizeof(double *) == sizeof(dem_distribution) &&
+               offsetof(dem_particle_template, velocity) + 3 * sizeof(double) == sizeof(dem_particle_template),
+               "dist_copy/template_copy: a new last member must be copied too");
+
 static void inlet_template(const dem_inlet *in, dem_particle_template *t)
 {
     *t = in->t;
@@ -373,7 +397,7 @@ dem_status dem_world_add_inlet(dem_world *w, size_t nv, const double *polygon,
     for (int k = 0; k < 3; ++k) in.n[k] = nrm[k] / l;
     in.area = 0.5 * l;
     in.kind = kind; in.rate = rate; in.t_start = t_start; in.t_end = t_end;
-    in.t = *t;
+    template_copy(&in.t, t);
     if (t->diameter.kind == DEM_DIST_DISCRETE) {
         memcpy(in.tw_d, t->diameter.values, t->diameter.n * sizeof(double));
         memcpy(in.tw_d + 32, t->diameter.weights, t->diameter.n * sizeof(double));

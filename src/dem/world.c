@@ -160,6 +160,28 @@ dem_status dem_config_check(dem_world *w, const dem_config *c)
     return DEM_OK;
 }
 
+/* c into a zeroed dst member by member: a struct copy would also copy the
+ * caller's padding bytes, which go into state files (equal runs must give
+ * byte-identical files). */
+static void config_copy(dem_config *dst, const dem_config *c)
+{
+    memset(dst, 0, sizeof *dst);
+    dst->contact_law = c->contact_law;
+    dst->dt = c->dt;
+    memcpy(dst->gravity, c->gravity, sizeof dst->gravity);
+    memcpy(dst->domain_lo, c->domain_lo, sizeof dst->domain_lo);
+    memcpy(dst->domain_hi, c->domain_hi, sizeof dst->domain_hi);
+    memcpy(dst->periodic, c->periodic, sizeof dst->periodic);
+    dst->skin = c->skin;
+    dst->max_dt_fraction = c->max_dt_fraction;
+    dst->max_overlap_ratio = c->max_overlap_ratio;
+    dst->seed = c->seed;
+    dst->spatial_sort = c->spatial_sort;
+    dst->impact_speed = c->impact_speed;
+}
+_Static_assert(offsetof(dem_config, impact_speed) + sizeof(double) == sizeof(dem_config),
+               "config_copy: a member after impact_speed must be copied too");
+
 dem_status dem_world_configure(dem_world *w, const dem_config *c)
 {
     if (!w) return DEM_ERR_ARG;
@@ -188,7 +210,7 @@ dem_status dem_world_configure(dem_world *w, const dem_config *c)
         return DEM_OK;
     }
     uint64_t old_seed = w->cfg.seed;
-    w->cfg = *c;
+    config_copy(&w->cfg, c);
     for (int k = 0; k < 3; ++k) w->cfg.periodic[k] = c->periodic[k] ? 1 : 0;
     if (c->seed != old_seed || w->step == 0) dem_rng_seed(w, c->seed);
     w->pairs_dirty = 1;
@@ -660,6 +682,7 @@ static dem_status book_removal(dem_world *w, size_t i, int outlet)
         w->caprec = nc;
     }
     dem_removed_record *r = &w->rec[w->nrec++];
+    memset(r, 0, sizeof *r); /* padding too: records go into state files */
     r->id = w->id[i];
     r->time = w->time;
     r->diameter = 2.0 * w->rad[i];

@@ -68,6 +68,7 @@ int main(int argc, char *argv[])
     // time, stops here, before the mesh or any field is read
     checkProcessorDirs(runTime);
     timeCompletion::checkStart(runTime);
+    #include "restoreTimeValue.H"
     demFoamSignals::watch();
     #include "createMesh.H"
     #include "createControl.H"

@@ -91,6 +91,15 @@ void Foam::demCoupling::report(const bool full) const
                 << lost[patchi] << endl;
         }
     }
+    // list builds and wall contacts of the last force evaluation (the
+    // restart tests check that their window has both)
+    dem_stats st;
+    world_.check(dem_world_stats(world_, &st), "dem_world_stats");
+    Info<< "demCoupling: DEM neighbour-list builds "
+        << returnReduce(label(st.list_builds), maxOp<label>())
+        << (Pstream::parRun() ? " (most on one processor)" : "")
+        << ", wall contacts "
+        << returnReduce(label(st.wall_contacts), sumOp<label>()) << endl;
     Info<< "demCoupling: lost particles in total " << lostTotal()
         << " (global searches "
         << returnReduce(locator_.nGlobal(), sumOp<label>()) << ")" << endl;
