@@ -1,4 +1,4 @@
-/* Randomised robustness test of the public C API (issue 6, item 6).
+/* Randomised robustness test of the public C API (docs/demCore.md, Tests).
  *
  * Two twin worlds A and B receive the same sequence of valid calls; A also
  * receives malformed and extreme calls in between (NULL pointers, NaN,

@@ -1710,7 +1710,7 @@ void Foam::demCoupling::evolve
         fDrag_[j] = dragRate;
         fGradP_[j] = fGP[s];
 
-        // applicability index [Z 2.25-2.27], physics.md section 5
+        // applicability index [Z 2.25-2.27], docs/theory.md section 6
         const scalar e = epsP[s];
         const vector fResid =
             fGP[s] - fd*(1 - e)/e + divTauP[s] + rhof_*Vp*g_;
