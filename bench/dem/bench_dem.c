@@ -1,6 +1,8 @@
 /*---------------------------------------------------------------------------*\
   bench_dem - timed stepping of the settled bed with the demFoam DEM core
   (the "ours" half of bench/dem/run; LIGGGHTS runs in.bench on the same bed).
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
   Usage: bench_dem BEDFILE NSTEPS
 

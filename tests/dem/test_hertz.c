@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Hertz elastic normal impact (no damping, no friction, no gravity):
  * peak force, peak overlap and contact duration against Hertz theory
  * (Johnson, Contact Mechanics, 1985, sec. 11.4):
