@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Initial and settled states for the demFoam DEM benchmark (bench/dem/run).
 
   bed.py lattice N DATAFILE          loose jittered lattice -> LIGGGHTS data file
