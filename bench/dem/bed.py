@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Initial and settled states for the demFoam DEM benchmark (bench/dem/run).
 
   bed.py lattice N DATAFILE          loose jittered lattice -> LIGGGHTS data file
@@ -14,8 +15,8 @@ above the loose lattice, so the settled bed does not touch it.
 """
 import math, random, struct, sys
 
-D = 2.0e-3          # diameter [m] (issue 3, Performance)
-RHO = 2500.0        # density [kg/m3] (issue 3)
+D = 2.0e-3          # diameter [m] (docs/performance.md, bench/dem)
+RHO = 2500.0        # density [kg/m3] (docs/performance.md)
 S = 1.05 * D        # lattice spacing of the loose start (packing fraction 0.45)
 MAGIC = b"DEMBED01"
 

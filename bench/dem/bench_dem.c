@@ -1,6 +1,8 @@
 /*---------------------------------------------------------------------------*\
   bench_dem - timed stepping of the settled bed with the demFoam DEM core
   (the "ours" half of bench/dem/run; LIGGGHTS runs in.bench on the same bed).
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
   Usage: bench_dem BEDFILE NSTEPS
 
@@ -8,7 +10,7 @@
   hi[3] (doubles), then per particle int64 id and 11 doubles
   x[3] v[3] omega[3] radius density (little endian).
 
-  Problem (issue 3, Performance paragraph): Hertz-Mindlin with history,
+  Problem (docs/performance.md, "The benchmark"): Hertz-Mindlin with history,
   E = 1e7 Pa, nu = 0.3, e = 0.9, mu_s = 0.4, rolling friction as LIGGGHTS'
   cdt with coefficient 0.01: LIGGGHTS applies 0.01 R* k_n delta_n, our law
   M_r = mu_r |F_n|, so mu_r = 0.01 R* = 0.01 x (R/2) = 5e-6 m for the

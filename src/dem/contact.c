@@ -1,5 +1,7 @@
 /*---------------------------------------------------------------------------*\
   demFoam DEM core - contact forces.
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
   Convention (written once): for a pair (i, j) n = (x_i - x_j)/|x_i - x_j|
   points from j to i, delta = a_i + a_j - |x_i - x_j|, the contact-point

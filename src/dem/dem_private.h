@@ -1,6 +1,9 @@
 /*---------------------------------------------------------------------------*\
   demFoam DEM core - private definitions shared by the source files of
   src/dem.  Not installed; the OpenFOAM side only sees include/dem.h.
+
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 \*---------------------------------------------------------------------------*/
 #ifndef DEM_PRIVATE_H
 #define DEM_PRIVATE_H

@@ -1,5 +1,7 @@
 /*---------------------------------------------------------------------------*\
   demFoam DEM core - insertion (fill a region, stream inlets) and outlets.
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
   Region filling is random sequential addition: each particle (size and
   density drawn from the template's distributions) is tried at up to

@@ -1,6 +1,8 @@
 /*---------------------------------------------------------------------------*\
   demFoam DEM core - state files (save/restore), particle packing for
   domain decomposition (pack/unpack), ghosts.
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
   State file (binary, native byte order, checked on read):
       "DEMSTATE" | uint32 version | uint32 0x01020304 | uint32 sizeof(double)

@@ -1,5 +1,7 @@
 /*---------------------------------------------------------------------------*\
   demFoam DEM core - neighbour search.
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
   Linked cells (cell >= 2 a_max + skin) give a half Verlet list in CSR form
   (row i holds partners j > i within a_i + a_j + skin).  Owned particles are

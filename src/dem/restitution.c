@@ -1,6 +1,8 @@
 /*---------------------------------------------------------------------------*\
   demFoam DEM core - restitution <-> damping mappings and the random number
   generator.
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
   Hertz-Mindlin [Z]: m x'' = -(4/3) E* sqrt(R) x^(3/2) - c sqrt(8 m E* sqrt(R x)) x'.
   With k = (4/3) E* sqrt(R), x = L y, t = T s, T^2 k L^(1/2) / m = 1 and

@@ -1,5 +1,7 @@
 /*---------------------------------------------------------------------------*\
   demFoam DEM core - time integration.
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
   Velocity Verlet (kick dt/2, drift dt, forces, kick dt/2) for translation
   and rotation of spheres (I = 2/5 m a^2).  The contact force/torque of the

@@ -1,6 +1,9 @@
 /*---------------------------------------------------------------------------*\
   demFoam DEM core - walls: infinite planes and triangle meshes, each with a
   material and a translational velocity (position = p(t0) + vel (t - t0)).
+
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 \*---------------------------------------------------------------------------*/
 #include "dem_private.h"
 #include <limits.h>

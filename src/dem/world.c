@@ -1,6 +1,9 @@
 /*---------------------------------------------------------------------------*\
   demFoam DEM core - world handle: creation, configuration, errors, logging,
   materials, particle storage, diagnostics.
+
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 \*---------------------------------------------------------------------------*/
 #include "dem_private.h"
 #include <float.h>

@@ -3,6 +3,9 @@
   docs/developers.md: one line per check,
       PASS: <name>: <measured> vs <expected> (tol <tolerance>)
   and a non-zero exit status if any check failed (check_exit()).
+
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 \*---------------------------------------------------------------------------*/
 #ifndef DEM_TEST_CHECK_H
 #define DEM_TEST_CHECK_H

@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Added (virtual) mass, dem_arrays.added_mass: the translational inertia
  * becomes m + m_a while gravity stays m g.
  *  1. no drag, constant force_ext F and gravity: v(t) = (F + m g) t/(m + m_a)

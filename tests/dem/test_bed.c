@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* A poured bed: 2000 spheres (d = 2 mm, E = 1e7 Pa, mu = 0.3, e = 0.5)
  * placed at random by fill_box in a tall region, falling under gravity
  * onto a floor, periodic sideways.  After settling, the packing fraction

@@ -3,6 +3,9 @@
   The coupling sets the DEM clock to the fluid's, with settling run before
   the fluid's start time: the clock then counts from the value set, inlets
   open at their start time on it, and a moving wall keeps its position.
+
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 \*---------------------------------------------------------------------------*/
 #include "check.h"
 

@@ -1,4 +1,11 @@
-/* Split step and decomposition support (issue 7).
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
+/* Split step and decomposition support (docs/demCore.md, "State,
+ * decomposition support"; docs/parallel.md).
  * (a) n x (dem_world_step_drift + dem_world_step_forces) is bit-identical to
  *     dem_world_step(w, n): a bed on plane walls, the same with coupling
  *     arrays (force_ext, torque_ext, drag_coeff, fluid_velocity, added_mass),

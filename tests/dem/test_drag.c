@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Semi-implicit drag: with K, u fixed and no other force each half kick
  * solves m (v' - v)/h = K (u - v'), so after n steps
  *   v - u = (v0 - u) / (1 + h K/m)^(2n),  h = dt/2

@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Triangle-mesh walls: a sphere hitting the shared edge of two coplanar
  * triangles, or the vertex shared by a fan of four, behaves exactly as
  * against one infinite plane (one contact, same force history), including

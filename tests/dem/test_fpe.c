@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* OpenFOAM runs with floating-point traps (FOAM_SIGFPE): the core must not
  * raise division-by-zero, invalid or overflow in normal operation.  With
  * those traps enabled (glibc feenableexcept), pour spheres onto plane and

@@ -1,4 +1,10 @@
-/* Randomised robustness test of the public C API (issue 6, item 6).
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
+/* Randomised robustness test of the public C API (docs/demCore.md, Tests).
  *
  * Two twin worlds A and B receive the same sequence of valid calls; A also
  * receives malformed and extreme calls in between (NULL pointers, NaN,

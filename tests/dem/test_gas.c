@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Elastic frictionless gas in a fully periodic box (Hertz, e = 1, mu = 0):
  * total energy (kinetic + Hertz elastic (8/15) E* sqrt(R*) delta^(5/2))
  * drifts by less than 1e-6 relative over 1e5 steps; total momentum stays

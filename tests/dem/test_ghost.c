@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Decomposition support: a world that owns particles A, B and holds C as a
  * ghost (packed from a world that owns all three) computes the same forces
  * on A and B for one step as the world that owns all three; ghosts are not

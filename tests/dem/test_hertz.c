@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Hertz elastic normal impact (no damping, no friction, no gravity):
  * sphere-sphere, sphere on a wall of the same material, and sphere on a
  * rigid wall (DEM_RIGID: E* = E/(1 - nu^2) of the sphere alone);

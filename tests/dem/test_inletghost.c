@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Inlets in decomposed runs: (1) the insertion overlap test includes ghost
  * copies: a ghost sphere covering the whole inlet square blocks it (no
  * particle inserted), while the same world without the ghost inserts at the

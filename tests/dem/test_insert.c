@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Insertion and outlets against exact bookkeeping and simple statistics:
  * fill_cylinder keeps every sphere inside and free of overlaps and draws
  * uniform diameters with the right mean; fill_box honours the inside test;

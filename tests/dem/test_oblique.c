@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Oblique impact of a sphere on a plane wall, Hertz-Mindlin, no gravity.
  * Sliding regime (tan(theta) > 7/2 mu (1+e)): rigid-body Coulomb impact
  * gives v_t'/v_t = 1 - mu (1+e) / tan(theta) and a w' = 5/2 mu (1+e) v_n

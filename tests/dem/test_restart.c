@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Save/restore: a run interrupted by dem_world_save, a fresh handle and
  * dem_world_restore continues bit for bit like the uninterrupted run
  * (particles pouring from an inlet into a box of planes and a triangle-mesh

@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* Requested restitution reproduced by Hertz-Mindlin (c_n from the exact
  * dimensionless-ODE mapping) and by the linear spring-dashpot
  * (e = exp(-gamma t_c / 2) of [S]), sphere-sphere and sphere-wall, 1 %. */

@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 /* A sphere rolling on a plane under gravity with rolling friction
  * M_r = mu_r |f_n| decelerates at dv/dt = -(5/7) mu_r g / a (rolling
  * without slip, I = 2/5 m a^2: m dv/dt = F_t, I dw/dt = -a F_t - mu_r m g). */

@@ -1,5 +1,7 @@
 /*---------------------------------------------------------------------------*\
   demFoam
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
 Application
     demFoam
@@ -8,8 +10,8 @@ Description
     Transient incompressible CFD-DEM solver: PIMPLE for the fluid with the
     fluid volume fraction eps (continuity d(eps)/dt + div(eps u) = 0), the
     particles in the C DEM core (src/dem) coupled by the momentum
-    formulation set I, II or III of Zhou et al. (2010), physics.md
-    section 4 (constant/demProperties, keyword formulation).
+    formulation set I, II or III of Zhou et al. (2010), docs/theory.md
+    section 3 (constant/demProperties, keyword formulation).
 
     Fluid momentum equation (kinematic, p = p/rho_f):
         ddt(eps, U) + div(eps phi, U) + c_tau divDevReff(U)

@@ -1,6 +1,8 @@
 /*---------------------------------------------------------------------------*\
   demFoam - the C11 discrete-element core.  Public API (the only header the
   OpenFOAM side includes).
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
   Conventions
   - Opaque handle dem_world; create/destroy: dem_world_create(&w),

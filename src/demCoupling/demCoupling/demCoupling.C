@@ -1,3 +1,9 @@
+/*---------------------------------------------------------------------------*\
+  demFoam: CFD-DEM for OpenFOAM
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
 #include "demCoupling.H"
 #include "timeCompletion.H"
 #include "dictionaryFileCheck.H"
@@ -1717,7 +1723,7 @@ void Foam::demCoupling::evolve
         fDrag_[j] = dragRate;
         fGradP_[j] = fGP[s];
 
-        // applicability index [Z 2.25-2.27], physics.md section 5
+        // applicability index [Z 2.25-2.27], docs/theory.md section 6
         const scalar e = epsP[s];
         const vector fResid =
             fGP[s] - fd*(1 - e)/e + divTauP[s] + rhof_*Vp*g_;

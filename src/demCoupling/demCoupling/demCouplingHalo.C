@@ -1,5 +1,7 @@
 /*---------------------------------------------------------------------------*\
   demFoam
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
 Description
     Divided voidage across processor boundaries (decomposed runs).

@@ -1,8 +1,11 @@
 /*---------------------------------------------------------------------------*\
   demFoam
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
 Description
-    Clean failure and progress of a run (issue 6):
+    Clean failure and progress of a run (docs/demProperties.md,
+    "Clean failure and progress"):
       - checkpoint()/restoreCheckpoint(): the state at the start of a fluid
         step kept in memory, so that a step that fails (non-finite particle
         state, runaway overlap, lost particles, non-finite fluid) can be

@@ -1,9 +1,11 @@
 /*---------------------------------------------------------------------------*\
   demFoam
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
 
 Description
     Checks of constant/demProperties before anything is built or written
-    (issue 6, docs/demProperties.md): every keyword of every scope is known
+    (docs/demProperties.md, "Checks before the first step"): every keyword of every scope is known
     (else the nearest valid name is suggested), every value has the right
     type and range, model, law, material and patch names exist.  A second
     check, after the initial particles are placed and before the first

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Helpers for tests/cases/*/run (source this file).
 #   setupEnv          source etc/bashrc of this tree
 #   makeTmpCase SRC   copy SRC to a fresh temporary directory, cd there

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Write particle centres as an OpenFOAM list of points.
 
   positions.py lattice X0 Y0 Z0 NX NY NZ SPACING   simple cubic lattice, first centre at (X0,Y0,Z0)
