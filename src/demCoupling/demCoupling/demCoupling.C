@@ -1121,6 +1121,7 @@ void Foam::demCoupling::locateAll()
 
     DynamicList<label> leaving;
     DynamicList<label> leavingPatch;
+    DynamicList<label> leavingFace;
 
     for (label i = 0; i < n; ++i)
     {
@@ -1135,6 +1136,7 @@ void Foam::demCoupling::locateAll()
             (
                 exitFace >= 0 ? mesh_.boundaryMesh().whichPatch(exitFace) : -1
             );
+            leavingFace.append(exitFace);
         }
     }
 
@@ -1142,7 +1144,12 @@ void Foam::demCoupling::locateAll()
     boolList taken(leaving.size(), false);
     if (Pstream::parRun())
     {
-        migrate(leaving, taken);
+        labelList exitPatch;
+        migrate(leaving, leavingFace, taken, exitPatch);
+        forAll(exitPatch, k)
+        {
+            if (exitPatch[k] >= 0) leavingPatch[k] = exitPatch[k];
+        }
         a = world_.arrays();
     }
 

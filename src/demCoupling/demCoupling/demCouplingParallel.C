@@ -538,10 +538,50 @@ dem_status Foam::demCoupling::stepDecomposed(const label m)
 }
 
 
+Foam::label Foam::demCoupling::patchBeyond
+(
+    const label from,
+    const point& faceCentre,
+    const point& p
+) const
+{
+    // the face of this processor's patch to processor `from` at that centre
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    label seed = -1;
+    scalar best = GREAT, tol = 0;
+    for (const polyPatch& pp : pbm)
+    {
+        if (!pp.size() || locator_.processorBehind(pp.start()) != from) continue;
+        forAll(pp, i)
+        {
+            const scalar d = magSqr(pp.faceCentres()[i] - faceCentre);
+            if (d < best)
+            {
+                best = d;
+                seed = pp.faceCells()[i];
+                // the same face: its centre within 1e-6 of its size
+                tol = 1e-12*mag(pp.faceAreas()[i]);
+            }
+        }
+    }
+    if (seed < 0 || best > tol) return -1;
+    // walk on from there (no global search: p is in no cell here)
+    label exitFace = -1;
+    if (locator_.locate(p, seed, exitFace, false) >= 0 || exitFace < 0)
+    {
+        return -1;
+    }
+    const label patchi = pbm.whichPatch(exitFace);
+    return isA<processorPolyPatch>(pbm[patchi]) ? -1 : patchi;
+}
+
+
 void Foam::demCoupling::migrate
 (
     const DynamicList<label>& leaving,
-    boolList& taken
+    const DynamicList<label>& exitFace,
+    boolList& taken,
+    labelList& exitPatch
 )
 {
     const auto t0 = std::chrono::steady_clock::now();
@@ -549,6 +589,8 @@ void Foam::demCoupling::migrate
     const label me = Pstream::myProcNo();
     taken.setSize(leaving.size());
     taken = false;
+    exitPatch.setSize(leaving.size());
+    exitPatch = -1;
 
     // the ghosts go first: a ghost may become owned here
     world_.check(dem_world_clear_ghosts(world_), "dem_world_clear_ghosts");
@@ -558,6 +600,9 @@ void Foam::demCoupling::migrate
     std::vector<char> out;
     labelList sizes(leaving.size());
     List<point> where(leaving.size());
+    // the centre of the processor face the walk left through (else a
+    // point no face has)
+    List<point> through(leaving.size(), point::max);
     forAll(leaving, k)
     {
         const size_t i = size_t(leaving[k]);
@@ -575,6 +620,10 @@ void Foam::demCoupling::migrate
         );
         sizes[k] = label(sz);
         where[k] = wrapped(a, leaving[k]);
+        if (exitFace[k] >= 0 && locator_.processorBehind(exitFace[k]) >= 0)
+        {
+            through[k] = mesh_.faceCentres()[exitFace[k]];
+        }
     }
     labelList counts(nProcs, 0);
     counts[me] = leaving.size();
@@ -592,13 +641,14 @@ void Foam::demCoupling::migrate
             {
                 if (r == me) continue;
                 UOPstream os(r, pBufs);
-                os << sizes << where;
+                os << sizes << where << through;
                 os.write(out.data(), std::streamsize(out.size()));
             }
         }
         pBufs.finishedSends();
 
         labelList owner(offset[nProcs], nProcs);
+        labelList outPatch(offset[nProcs], -1);
         List<std::vector<char>> in(nProcs);
         List<labelList> inSizes(nProcs);
         List<labelList> inCell(nProcs);
@@ -606,8 +656,8 @@ void Foam::demCoupling::migrate
         {
             if (r == me || !counts[r]) continue;
             UIPstream is(r, pBufs);
-            List<point> inWhere;
-            is >> inSizes[r] >> inWhere;
+            List<point> inWhere, inThrough;
+            is >> inSizes[r] >> inWhere >> inThrough;
             in[r].resize(sum(inSizes[r]));
             is.read(in[r].data(), std::streamsize(in[r].size()));
             inCell[r].setSize(counts[r], -1);
@@ -619,14 +669,22 @@ void Foam::demCoupling::migrate
                 {
                     owner[offset[r] + k] = me;
                 }
+                else if (inThrough[k] != point::max)
+                {
+                    outPatch[offset[r] + k] =
+                        patchBeyond(r, inThrough[k], inWhere[k]);
+                }
             }
         }
         Pstream::listCombineGather(owner, minEqOp<label>());
         Pstream::listCombineScatter(owner);
+        Pstream::listCombineGather(outPatch, maxEqOp<label>());
+        Pstream::listCombineScatter(outPatch);
 
         forAll(leaving, k)
         {
             taken[k] = owner[offset[me] + k] < nProcs;
+            exitPatch[k] = outPatch[offset[me] + k];
         }
 
         // take the particles whose centre is in this processor's cells
