@@ -30,6 +30,8 @@ Description
 #include "pimpleControl.H"
 #include "fvOptions.H"
 #include "demCoupling.H"
+#include "interpolateInner.H"
+#include "reconstructFlux.H"
 #include "timeCompletion.H"
 #include "processorDirs.H"
 #include "signalRequests.H"
