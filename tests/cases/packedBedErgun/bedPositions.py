@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Frozen random bed for the centre voidage model: N spheres spread over the
 cells below height H with counts proportional to the cell volumes (the
 rounding carried from cell to cell, so the bed's solid fraction is exact),

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Pressure drop of a frozen bed against Ergun's equation.
 
 usage: ergunCheck.py TIME U HBED LZ [T0]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Fluidised plateau: time-averaged pressure drop against the buoyant weight
 of the particles per area.
 
