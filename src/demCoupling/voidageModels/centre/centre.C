@@ -4,7 +4,7 @@
   License: GPL-3.0-or-later (see LICENSE)
 \*---------------------------------------------------------------------------*/
 
-#include "centreVoidage.H"
+#include "centre.H"
 #include "addToRunTimeSelectionTable.H"
 
 namespace Foam

@@ -4,7 +4,7 @@
   License: GPL-3.0-or-later (see LICENSE)
 \*---------------------------------------------------------------------------*/
 
-#include "dividedVoidage.H"
+#include "divided.H"
 #include "addToRunTimeSelectionTable.H"
 #include "FixedList.H"
 

@@ -4,7 +4,7 @@
   License: GPL-3.0-or-later (see LICENSE)
 \*---------------------------------------------------------------------------*/
 
-#include "smoothedVoidage.H"
+#include "smoothed.H"
 #include "addToRunTimeSelectionTable.H"
 
 namespace Foam
