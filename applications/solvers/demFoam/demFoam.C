@@ -31,7 +31,7 @@ Description
 #include "fvOptions.H"
 #include "demCoupling.H"
 #include "interpolateInner.H"
-#include "reconstructFlux.H"
+#include "fluxReconstruction.H"
 #include "timeCompletion.H"
 #include "processorDirs.H"
 #include "signalRequests.H"
