@@ -1120,7 +1120,6 @@ void Foam::demCoupling::locateAll()
     const label n = label(a.n_owned);
 
     DynamicList<label> leaving;
-    DynamicList<label> leavingPatch;
     DynamicList<label> leavingFace;
 
     for (label i = 0; i < n; ++i)
@@ -1132,24 +1131,18 @@ void Foam::demCoupling::locateAll()
         if (c < 0)
         {
             leaving.append(i);
-            leavingPatch.append
-            (
-                exitFace >= 0 ? mesh_.boundaryMesh().whichPatch(exitFace) : -1
-            );
             leavingFace.append(exitFace);
         }
     }
 
     // decomposed: those in another processor's cells move there
+    // (and the patch those that left through a processor face then left
+    // the domain by on the other side)
     boolList taken(leaving.size(), false);
+    labelList exitPatch(leaving.size(), -1);
     if (Pstream::parRun())
     {
-        labelList exitPatch;
         migrate(leaving, leavingFace, taken, exitPatch);
-        forAll(exitPatch, k)
-        {
-            if (exitPatch[k] >= 0) leavingPatch[k] = exitPatch[k];
-        }
         a = world_.arrays();
     }
 
@@ -1166,7 +1159,10 @@ void Foam::demCoupling::locateAll()
             );
             continue;
         }
-        label patchi = leavingPatch[k];
+        label patchi =
+            exitPatch[k] >= 0 ? exitPatch[k]
+          : leavingFace[k] >= 0 ? mesh_.boundaryMesh().whichPatch(leavingFace[k])
+          : -1;
         if (patchi >= 0 && isA<processorPolyPatch>(mesh_.boundaryMesh()[patchi]))
         {
             // through a processor boundary into no processor's cells
@@ -1739,7 +1735,7 @@ void Foam::demCoupling::evolve
         // the bed average takes the particles that the fluid carries in
         // part at least: where its total force is below a tenth of the
         // weight (a bed at rest, no flow yet) the ratio is noise
-        // (docs/forces.md, "The applicability index eta")
+        // (docs/theory.md section 6)
         if (mag(fTotal) >= etaMinForceRatio*a.density[j]*Vp*mag(g_))
         {
             etaSum += etaP_[j];

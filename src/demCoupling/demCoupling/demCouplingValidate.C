@@ -661,6 +661,17 @@ bool Foam::demCoupling::checkDictionary
     }
 
     // initialParticles and inlets
+    // a particle material: one of materials, and not rigid (walls only)
+    auto particleMaterial = [&](const dictionary& d, const word& sc)
+    {
+        const word m(d.get<word>("material"));
+        chk.checkName(d, sc, "material", m, materialNames, "material");
+        if (rigidNames.found(m))
+        {
+            chk.fail(d, sc, "material", m,
+                     "a material without rigid yes (rigid materials are for walls only)");
+        }
+    };
     const keySpec positive = num("", kind::Distribution, 0, inf, true, false);
     auto dist = [&](const char* n)
     {
@@ -746,12 +757,7 @@ bool Foam::demCoupling::checkDictionary
                     }
                 }
             }
-            chk.checkName(d, sc, "material", d.get<word>("material"), materialNames, "material");
-            if (rigidNames.found(d.get<word>("material")))
-            {
-                chk.fail(d, sc, "material", d.get<word>("material"),
-                         "a material without rigid yes (rigid materials are for walls only)");
-            }
+            particleMaterial(d, sc);
         }
     }
     if (dict.isDict("inlets"))
@@ -780,12 +786,7 @@ bool Foam::demCoupling::checkDictionary
             checkDistribution(chk, d, sc, "diameter");
             checkDistribution(chk, d, sc, "density");
             chk.checkName(d, sc, "patch", d.get<word>("patch"), patches, "patch in the mesh");
-            chk.checkName(d, sc, "material", d.get<word>("material"), materialNames, "material");
-            if (rigidNames.found(d.get<word>("material")))
-            {
-                chk.fail(d, sc, "material", d.get<word>("material"),
-                         "a material without rigid yes (rigid materials are for walls only)");
-            }
+            particleMaterial(d, sc);
         }
     }
 

@@ -24,6 +24,12 @@ Foam::instantList caseTimes(const Foam::Time& runTime)
     return Foam::instantList(std::move(t));
 }
 
+// Whether the current time is the first of the case's times t
+bool isFirst(const Foam::Time& runTime, const Foam::instantList& t)
+{
+    return t.empty() || t.first().equal(runTime.value());
+}
+
 } // End anonymous namespace
 
 
@@ -58,12 +64,11 @@ void Foam::timeCompletion::mark(const Time& runTime)
 
 bool Foam::timeCompletion::isInitial(const Time& runTime)
 {
-    const instantList t(caseTimes(runTime));
-    const bool first =
-        t.empty() || t.first().equal(runTime.value());
     return returnReduce
     (
-        first && !isComplete(runTime.timePath()), andOp<bool>()
+        isFirst(runTime, caseTimes(runTime))
+     && !isComplete(runTime.timePath()),
+        andOp<bool>()
     );
 }
 
@@ -71,8 +76,7 @@ bool Foam::timeCompletion::isInitial(const Time& runTime)
 void Foam::timeCompletion::checkStart(const Time& runTime)
 {
     const instantList t(caseTimes(runTime));
-    const bool first = t.empty() || t.first().equal(runTime.value());
-    const bool ok = first || isComplete(runTime.timePath());
+    const bool ok = isFirst(runTime, t) || isComplete(runTime.timePath());
     if (returnReduce(ok, andOp<bool>()))
     {
         return;
