@@ -73,6 +73,14 @@ static scalar report
 }
 
 
+// Whether dir holds a cloud: demFoam writes coordinates and positions,
+// decomposePar and reconstructPar coordinates only
+static bool hasCloud(const fileName& dir)
+{
+    return isFile(dir/"coordinates") || isFile(dir/"positions");
+}
+
+
 int main(int argc, char *argv[])
 {
     argList::addNote
@@ -103,7 +111,8 @@ int main(int argc, char *argv[])
     (
         "particleWeight",
         "w",
-        "cost of one particle relative to one fluid cell (default 10;"
+        "cost of one particle per fluid step relative to one fluid cell"
+        " (default 1, measured in zhouFluidisedBed and fluidisedBed;"
         " docs/parallel.md, \"Load balance by particles\")"
     );
     argList::addBoolOption
@@ -115,7 +124,7 @@ int main(int argc, char *argv[])
     #include "setRootCase.H"
     #include "createTime.H"
 
-    scalar w = 10;
+    scalar w = 1;
     if (args.readIfPresent("particleWeight", w) && !(w >= 0 && w < GREAT))
     {
         FatalErrorInFunction
@@ -138,7 +147,7 @@ int main(int argc, char *argv[])
                 if
                 (
                     times[i].name() != runTime.constant()
-                 && isFile(runTime.path()/times[i].name()/cloudDir/"positions")
+                 && hasCloud(runTime.path()/times[i].name()/cloudDir)
                 )
                 {
                     ti = i;
@@ -148,7 +157,7 @@ int main(int argc, char *argv[])
             {
                 FatalErrorInFunction
                     << "-time latest: no time directory of " << runTime.path()
-                    << " holds " << cloudDir/"positions"
+                    << " holds " << cloudDir/"coordinates" << " or positions"
                     << " (decomposed times: reconstructPar first)"
                     << exit(FatalError);
             }
@@ -184,11 +193,11 @@ int main(int argc, char *argv[])
     DynamicList<point> positions;
     if (args.found("time"))
     {
-        const fileName file(runTime.timePath()/cloudDir/"positions");
-        if (!isFile(file))
+        const fileName dir(runTime.timePath()/cloudDir);
+        if (!hasCloud(dir))
         {
             FatalErrorInFunction
-                << file << " not found: -time " << args["time"]
+                << dir/"coordinates" << " (or positions) not found: -time " << args["time"]
                 << " needs a serial or reconstructed time written by demFoam"
                 << " (decomposed: reconstructPar -time " << runTime.timeName()
                 << " first)" << exit(FatalError);
