@@ -128,7 +128,7 @@ int main(int argc, char *argv[])
     if (args.readIfPresent("particleWeight", w) && !(w >= 0 && w < GREAT))
     {
         FatalErrorInFunction
-            << "-particleWeight " << args["particleWeight"]
+            << "-particleWeight " << args["particleWeight"].c_str()
             << ": allowed a number >= 0 (0: cells only)" << exit(FatalError);
     }
 
@@ -178,9 +178,17 @@ int main(int argc, char *argv[])
              || mag(times[ti].value() - tv) > 1e-9*max(1, mag(tv))
             )
             {
+                wordList written;
+                for (const instant& i : times)
+                {
+                    if (i.name() != runTime.constant())
+                    {
+                        written.append(i.name());
+                    }
+                }
                 FatalErrorInFunction
                     << "-time " << t << ": no such time directory in "
-                    << runTime.path() << "; written: " << times
+                    << runTime.path() << "; written: " << written
                     << exit(FatalError);
             }
         }
@@ -197,7 +205,8 @@ int main(int argc, char *argv[])
         if (!hasCloud(dir))
         {
             FatalErrorInFunction
-                << dir/"coordinates" << " (or positions) not found: -time " << args["time"]
+                << dir/"coordinates" << " (or positions) not found: -time "
+                << args["time"]
                 << " needs a serial or reconstructed time written by demFoam"
                 << " (decomposed: reconstructPar -time " << runTime.timeName()
                 << " first)" << exit(FatalError);
@@ -224,7 +233,7 @@ int main(int argc, char *argv[])
         if (!demProps.isDict("initialParticles"))
         {
             FatalIOErrorInFunction(demProps)
-                << "no initialParticles in " << demProps.name()
+                << "no initialParticles in " << demProps.objectPath()
                 << ": give the particles with -time T (a time written by"
                 << " demFoam)" << exit(FatalIOError);
         }
@@ -240,7 +249,7 @@ int main(int argc, char *argv[])
                 // start-up: their positions exist only in a written time
                 FatalIOErrorInFunction(d)
                     << "initialParticles/" << e.keyword() << "/type " << type
-                    << " in " << demProps.name() << ": demDecompose reads"
+                    << " in " << demProps.objectPath() << ": demDecompose reads"
                     << " the positions of type list only; for box and"
                     << " cylinder fills run demFoam serially to a first"
                     << " write time and give it with -time T"
@@ -379,7 +388,8 @@ int main(int argc, char *argv[])
     coeffs.add("dataFile", fileName("cellDecomposition"));
     manualDict.add("coeffs", coeffs);
     manualDict.note() =
-        "written by demDecompose from " + fileName(decompDict.objectPath()).name()
+        "written by demDecompose from "
+      + fileName(decompDict.objectPath()).name()
       + ": decomposePar -decomposeParDict system/decomposeParDict.particles";
     manualDict.regIOobject::write();
 
