@@ -8,13 +8,12 @@
 #include "timeCompletion.H"
 #include "dictionaryFileCheck.H"
 #include "insertionRegion.H"
+#include "patchWalls.H"
 #include "demCouplingTools.H"
 #include "OStringStream.H"
 #include <limits>
 #include "fvc.H"
 #include "fvm.H"
-#include "emptyPolyPatch.H"
-#include "wallPolyPatch.H"
 #include "cyclicPolyPatch.H"
 #include "processorPolyPatch.H"
 #include "processorCyclicPolyPatch.H"
@@ -107,28 +106,6 @@ namespace
             default: return d.a;
         }
     }
-
-    // The lists of all processors joined in processor order (decomposed
-    // runs); the list itself when serial
-    template<class T>
-    Foam::List<T> joinAll(const Foam::UList<T>& mine)
-    {
-        using namespace Foam;
-        if (!Pstream::parRun()) return List<T>(mine);
-        List<List<T>> all(Pstream::nProcs());
-        all[Pstream::myProcNo()] = mine;
-        Pstream::gatherList(all);
-        Pstream::scatterList(all);
-        label n = 0;
-        for (const List<T>& l : all) n += l.size();
-        List<T> joined(n);
-        n = 0;
-        for (const List<T>& l : all)
-        {
-            for (const T& x : l) joined[n++] = x;
-        }
-        return joined;
-    }
 }
 
 
@@ -174,28 +151,23 @@ Foam::demCoupling::demCoupling
     drag_(dragModel::New(dict_)),
     voidage_(voidageModel::New(dict_, mesh, locator_)),
     extraForces_(extraForce::NewList(dict_)),
-    Uprev_(),
-    indexUprev_(-2),
     cellMeanDrag_(false),
     frozen_(dict_.getOrDefault<bool>("frozen", false)),
     epsMin_(dict_.getOrDefault<scalar>("epsMin", 0.1)),
     etaWarning_(dict_.getOrDefault<scalar>("etaWarning", 20.0)),
     rampTime_(dict_.getOrDefault<scalar>("insertionRampTime", 0)),
-    rampStart_(),
     voidageTime_(mesh.time().value()),
     demDt_(0),
     dragUpdateInterval_(0),
     nSubCycles_(0),
+    ghosts_
+    (
+        world_, periodic_, boxLo_, boxHi_, inletBoxes_, inletRadius_, tComm_
+    ),
     driving_(dict_.found("periodicDriving")),
     UsTarget_(Zero),
     drivingRelax_(0.2),
-    G_(Zero),
-    lostUnknown_(0),
-    haloSend_(),
-    haloStart_(2, Zero),
-    haloAny_(false),
-    haloParticleSteps_(0),
-    bedEta_{0, 0, 0},
+    map_(mesh, locator_, tComm_),
     balanceFluid_(0),
     balanceParticle_(0),
     balanceFluidVec_(Zero),
@@ -237,10 +209,6 @@ Foam::demCoupling::demCoupling
     snapBuf_ = nullptr;
     snapSize_ = 0;
     snapCapacity_ = 0;
-    snapLostUnknown_ = 0;
-    snapBedEta_ = bedEta_;
-    snapIndexUprev_ = -2;
-    snapG_ = Zero;
     wallStart_ = std::chrono::steady_clock::now();
     wallLastProgress_ = 0;
     tDem_ = tCoupling_ = tFluid_ = 0;
@@ -262,9 +230,7 @@ Foam::demCoupling::demCoupling
     boxLo_ = Zero;
     boxHi_ = Zero;
     inletRadius_ = 0;
-    ghostSize_ = 0;
     tComm_ = 0;
-    sendReorder_ = -1;
 
     const word scheme(dict_.getOrDefault<word>("dragScheme", "perParticle"));
     if (scheme == "cellMean")
@@ -290,7 +256,7 @@ Foam::demCoupling::demCoupling
         const dictionary& dd = dict_.subDict("periodicDriving");
         UsTarget_ = dd.get<vector>("superficialVelocity");
         drivingRelax_ = dd.getOrDefault<scalar>("relaxation", 0.2);
-        G_ = dd.getOrDefault<vector>("initialGradient", Zero);
+        state_.G = dd.getOrDefault<vector>("initialGradient", Zero);
     }
 
     const dictionary& demDict = dict_.subDict("dem");
@@ -600,146 +566,14 @@ void Foam::demCoupling::configureWorld()
 
 void Foam::demCoupling::addWalls()
 {
-    const word wallMat(dict_.get<word>("wallMaterial"));
-    const int mat = materialId(wallMat, dict_);
-    const double zeroVel[3] = {0, 0, 0};
-
-    const wordList extraWalls
+    const int mat = materialId(dict_.get<word>("wallMaterial"), dict_);
+    patchWalls::add
     (
-        dict_.getOrDefault<wordList>("wallPatches", wordList())
+        world_,
+        mesh_,
+        dict_.getOrDefault<wordList>("wallPatches", wordList()),
+        mat
     );
-
-    // decomposed: every processor gets the walls of all (a particle near a
-    // processor boundary may touch a wall face of the neighbour)
-    for (const polyPatch& pp : mesh_.boundaryMesh())
-    {
-        if (isA<processorPolyPatch>(pp)) continue;
-        if (!returnReduce(pp.size(), sumOp<label>())) continue;
-
-        if (isA<emptyPolyPatch>(pp))
-        {
-            // one plane per distinct face plane (front and back of 2-D meshes)
-            const List<vector> nAll
-            (
-                joinAll(vectorField(pp.faceAreas()/mag(pp.faceAreas())))
-            );
-            const List<point> cAll(joinAll(pp.faceCentres()));
-            List<vector> ns;
-            List<point> ps;
-            forAll(nAll, i)
-            {
-                const vector& n = nAll[i];
-                const point& c = cAll[i];
-                bool known = false;
-                forAll(ns, k)
-                {
-                    if ((ns[k] & n) > 1 - 1e-6 && mag((c - ps[k]) & n) < 1e-9)
-                    {
-                        known = true;
-                        break;
-                    }
-                }
-                if (!known)
-                {
-                    ns.append(n);
-                    ps.append(c);
-                }
-            }
-            forAll(ns, k)
-            {
-                // DEM plane normal points into the domain
-                const vector nIn = -ns[k];
-                int id;
-                world_.check
-                (
-                    dem_world_add_plane
-                    (
-                        world_, ps[k].cdata(), nIn.cdata(), mat, zeroVel, &id
-                    ),
-                    "dem_world_add_plane"
-                );
-                Info<< "demCoupling: empty patch " << pp.name()
-                    << " -> DEM plane at " << ps[k] << " normal " << nIn << endl;
-            }
-        }
-        else if (isA<wallPolyPatch>(pp) || extraWalls.found(pp.name()))
-        {
-            // fan triangulation from the first vertex; faces where that
-            // gives a degenerate triangle (collinear points, as on the
-            // boundary of polyDualMesh meshes) are fanned about their centre
-            // instead, skipping degenerate triangles
-            const pointField& lp = pp.localPoints();
-            const faceList& lf = pp.localFaces();
-            DynamicList<double> verts(3*lp.size());
-            for (const point& x : lp)
-            {
-                verts.append(x.x()); verts.append(x.y()); verts.append(x.z());
-            }
-            DynamicList<int> tris;
-            auto triArea = [&](const point& a, const point& b, const point& c)
-            {
-                return 0.5*mag((b - a) ^ (c - a));
-            };
-            forAll(lf, facei)
-            {
-                const face& f = lf[facei];
-                const scalar fArea = f.mag(lp);
-                bool degenerate = false;
-                for (label k = 1; k + 1 < f.size(); ++k)
-                {
-                    if (triArea(lp[f[0]], lp[f[k]], lp[f[k+1]]) <= 1e-10*fArea)
-                    {
-                        degenerate = true;
-                    }
-                }
-                if (!degenerate)
-                {
-                    for (label k = 1; k + 1 < f.size(); ++k)
-                    {
-                        tris.append(f[0]); tris.append(f[k]); tris.append(f[k+1]);
-                    }
-                    continue;
-                }
-                const point c = f.centre(lp);
-                const int ci = int(verts.size()/3);
-                verts.append(c.x()); verts.append(c.y()); verts.append(c.z());
-                forAll(f, k)
-                {
-                    const label a = f[k], b = f.nextLabel(k);
-                    if (triArea(c, lp[a], lp[b]) > 1e-10*fArea)
-                    {
-                        tris.append(ci); tris.append(int(a)); tris.append(int(b));
-                    }
-                }
-            }
-            if (Pstream::parRun())
-            {
-                // vertex indices of each processor shifted by the vertices
-                // of the processors before it
-                labelList nv(Pstream::nProcs(), 0);
-                nv[Pstream::myProcNo()] = verts.size()/3;
-                Pstream::gatherList(nv);
-                Pstream::scatterList(nv);
-                label shift = 0;
-                for (label r = 0; r < Pstream::myProcNo(); ++r) shift += nv[r];
-                for (int& t : tris) t += int(shift);
-                verts = joinAll(verts);
-                tris = joinAll(tris);
-            }
-            int id;
-            world_.check
-            (
-                dem_world_add_trimesh
-                (
-                    world_, verts.size()/3, verts.cdata(), tris.size()/3,
-                    tris.cdata(), mat, zeroVel, &id
-                ),
-                "dem_world_add_trimesh"
-            );
-            Info<< "demCoupling: wall patch " << pp.name() << " -> DEM wall of "
-                << tris.size()/3 << " triangles" << endl;
-        }
-    }
 }
 
 
@@ -792,7 +626,7 @@ namespace
 void Foam::demCoupling::addOutletsAndInlets()
 {
     const polyBoundaryMesh& bm = mesh_.boundaryMesh();
-    lostPerPatch_.setSize(bm.size(), 0);
+    state_.lostPerPatch.setSize(bm.size(), 0);
 
     const wordList outlets
     (
@@ -1110,7 +944,7 @@ Foam::label Foam::demCoupling::subSteps(const scalar dt) const
 
 Foam::label Foam::demCoupling::lostTotal() const
 {
-    return returnReduce(lostUnknown_ + sum(lostPerPatch_), sumOp<label>());
+    return returnReduce(state_.lostUnknown + sum(state_.lostPerPatch), sumOp<label>());
 }
 
 
@@ -1176,7 +1010,7 @@ void Foam::demCoupling::locateAll()
         else
         {
             ++nLost;
-            if (patchi >= 0) ++lostPerPatch_[patchi]; else ++lostUnknown_;
+            if (patchi >= 0) ++state_.lostPerPatch[patchi]; else ++state_.lostUnknown;
             const vector x(toVec(a.x, leaving[k]));
             OStringStream msg;
             msg << "particle " << label(a.id[leaving[k]]) << " at " << x
@@ -1287,28 +1121,12 @@ void Foam::demCoupling::writeRemovedRecords()
 
 void Foam::demCoupling::computeWeights()
 {
-    dem_arrays a = world_.arrays();
-    const label n = label(a.n_owned);
-    wStart_.setSize(n + 1);
-    wCells_.clear();
-    wValues_.clear();
-    // decomposed: the parts in other processors' cells, by particle
-    DynamicList<remoteSample> remote;
-    DynamicList<label> remoteOwner;
-    for (label i = 0; i < n; ++i)
-    {
-        wStart_[i] = wCells_.size();
-        voidage_->addWeights
-        (
-            wrapped(a, i), a.radius[i], host_[i], wCells_, wValues_, remote
-        );
-        while (remoteOwner.size() < remote.size())
-        {
-            remoteOwner.append(i);
-        }
-    }
-    wStart_[n] = wCells_.size();
-    resolveRemote(remoteOwner, remote);
+    const dem_arrays a = world_.arrays();
+    map_.compute
+    (
+        voidage_(), label(a.n_owned), a.radius, host_,
+        [&](const label i) { return wrapped(a, i); }
+    );
 }
 
 
@@ -1322,16 +1140,16 @@ void Foam::demCoupling::computeVoidage()
     // (t - t0)/rampTime_ until rampTime_ has passed, so that the fluid
     // sees its volume arrive over rampTime_ instead of in one step
     const scalar tNow = mesh_.time().value();
-    for (auto it = rampStart_.begin(); it != rampStart_.end(); )
+    for (auto it = state_.rampStart.begin(); it != state_.rampStart.end(); )
     {
-        if (tNow - it->second >= rampTime_) it = rampStart_.erase(it);
+        if (tNow - it->second >= rampTime_) it = state_.rampStart.erase(it);
         else ++it;
     }
     voidageTime_ = tNow;
 
     scalarField solid(mesh_.nCells(), 0);
     vectorField mom(mesh_.nCells(), Zero);
-    const label nHalo = haloStart_.last();
+    const label nHalo = map_.nHalo();
     scalarField solidHalo(nHalo, 0);
     vectorField momHalo(nHalo, Zero);
     solidVolumeParticles_ = 0;
@@ -1342,11 +1160,11 @@ void Foam::demCoupling::computeVoidage()
         const scalar Vp = rampWeight(a.id[i], tNow)*V1;
         solidVolumeParticles_ += V1;
         solidVolumeRamp_ += V1 - Vp;
-        deposit(i, Vp, solid, solidHalo);
-        deposit(i, Vp*vector(toVec(a.v, i)), mom, momHalo);
+        map_.deposit(i, Vp, solid, solidHalo);
+        map_.deposit(i, Vp*vector(toVec(a.v, i)), mom, momHalo);
     }
-    haloAdd(solid, solidHalo);
-    haloAdd(mom, momHalo);
+    map_.haloAdd(solid, solidHalo);
+    map_.haloAdd(mom, momHalo);
     solidVolumeMesh_ = gSum(solid);
     reduce(solidVolumeParticles_, sumOp<scalar>());
     reduce(solidVolumeRamp_, sumOp<scalar>());
@@ -1373,13 +1191,13 @@ Foam::scalar Foam::demCoupling::rampWeight
     const scalar t
 ) const
 {
-    if (rampStart_.empty())
+    if (state_.rampStart.empty())
     {
         return 1;
     }
-    const auto it = rampStart_.find(id);
+    const auto it = state_.rampStart.find(id);
     return
-        it == rampStart_.end()
+        it == state_.rampStart.end()
       ? 1
       : min(max(t - it->second, 0)/rampTime_, 1);
 }
@@ -1405,7 +1223,7 @@ void Foam::demCoupling::startRamp(const DynamicList<int64_t>& inserted)
     {
         for (const int64_t id : ids)
         {
-            rampStart_[id] = t0;
+            state_.rampStart[id] = t0;
         }
     }
 }
@@ -1503,26 +1321,26 @@ void Foam::demCoupling::evolve
     }
 
     // the same in the other processors' cells of the weights (halo)
-    const List<vector> UcH(haloGet(Uc));
-    const List<vector> gradPcH(haloGet(gradPc));
-    const List<vector> divTcH(haloGet(divTc));
-    const List<scalar> epscH(haloGet(epsc));
-    const List<scalar> nucH(haloGet(nuc));
-    const List<vector> vortH(nExtra ? haloGet(vortCell) : List<vector>());
-    const List<vector> DuDtH(nExtra ? haloGet(DuDtCell) : List<vector>());
+    const List<vector> UcH(map_.haloGet(Uc));
+    const List<vector> gradPcH(map_.haloGet(gradPc));
+    const List<vector> divTcH(map_.haloGet(divTc));
+    const List<scalar> epscH(map_.haloGet(epsc));
+    const List<scalar> nucH(map_.haloGet(nuc));
+    const List<vector> vortH(nExtra ? map_.haloGet(vortCell) : List<vector>());
+    const List<vector> DuDtH(nExtra ? map_.haloGet(DuDtCell) : List<vector>());
     const List<vector> vsCellH
     (
-        cellMeanDrag_ ? haloGet(vsCell) : List<vector>()
+        cellMeanDrag_ ? map_.haloGet(vsCell) : List<vector>()
     );
 
     for (label s = 0; s < n; ++s)
     {
         const scalar Vp = VpS[s];
-        uF[s] = interp(s, Uc, UcH);
-        const vector gp = rhof_*interp(s, gradPc, gradPcH) + G_;
-        const vector dtau = rhof_*interp(s, divTc, divTcH);
-        epsP[s] = interp(s, epsc, epscH);
-        muP[s] = rhof_*interp(s, nuc, nucH);
+        uF[s] = map_.interp(s, Uc, UcH);
+        const vector gp = rhof_*map_.interp(s, gradPc, gradPcH) + state_.G;
+        const vector dtau = rhof_*map_.interp(s, divTc, divTcH);
+        epsP[s] = map_.interp(s, epsc, epscH);
+        muP[s] = rhof_*map_.interp(s, nuc, nucH);
         dragFac[s] = form.dragFactor(epsP[s]);
         fGP[s] = -Vp*gp;
         divTauP[s] = Vp*dtau;
@@ -1533,8 +1351,8 @@ void Foam::demCoupling::evolve
         scalar ma = 0;
         if (nExtra)
         {
-            vortP[s] = interp(s, vortCell, vortH);
-            DuDtP[s] = interp(s, DuDtCell, DuDtH);
+            vortP[s] = map_.interp(s, vortCell, vortH);
+            DuDtP[s] = map_.interp(s, DuDtCell, DuDtH);
             vStart[s] = toVec(a.v, s);
             forAll(extraForces_, k)
             {
@@ -1571,7 +1389,7 @@ void Foam::demCoupling::evolve
             if (cellMeanDrag_)
             {
                 // [S] method 1: drag from the cell-mean particle velocity
-                const vector vs = interp(s, vsCell, vsCellH);
+                const vector vs = map_.interp(s, vsCell, vsCellH);
                 slip = uF[s] - vs;
                 uf = uF[s] - vs + v;
             }
@@ -1621,7 +1439,7 @@ void Foam::demCoupling::evolve
             const auto t0 = std::chrono::steady_clock::now();
             const scalar tCommStep0 = tComm_;
             const dem_status st =
-                Pstream::parRun() ? stepDecomposed(m) : world_.tryStep(m);
+                Pstream::parRun() ? ghosts_.step(m, failure_) : world_.tryStep(m);
             tDem_ += std::chrono::duration<scalar>
             (
                 std::chrono::steady_clock::now() - t0
@@ -1629,7 +1447,7 @@ void Foam::demCoupling::evolve
               - (tComm_ - tCommStep0);
             if (st != DEM_OK)
             {
-                // (decomposed: set by stepDecomposed, naming the processor)
+                // (decomposed: set by processorGhosts::step, naming the processor)
                 if (failure_.empty())
                 {
                     failure_ = std::string("DEM core: ")
@@ -1655,22 +1473,22 @@ void Foam::demCoupling::evolve
     label etaN = 0, etaAll = 0;
     scalarField etaCell(mesh_.nCells(), 0);
     scalarField wCell(mesh_.nCells(), 0);
-    const label nHalo = haloStart_.last();
+    const label nHalo = map_.nHalo();
     vectorField FcHalo(nHalo, Zero);
     scalarField KcellHalo(nHalo, 0), etaCellHalo(nHalo, 0), wCellHalo(nHalo, 0);
 
-    outIds_.setSize(nEnd);
-    fDrag_.setSize(nEnd);
-    fGradP_.setSize(nEnd);
-    etaP_.setSize(nEnd);
-    coordP_.setSize(nEnd);
+    state_.outIds.setSize(nEnd);
+    state_.fDrag.setSize(nEnd);
+    state_.fGradP.setSize(nEnd);
+    state_.etaP.setSize(nEnd);
+    state_.coordP.setSize(nEnd);
     if (frozen_ || !writeStep())
     {
         // not counted: a fixed bed never evaluates contacts, and only
         // write steps write them (a count costs about 0.1 DEM step; a
         // last good state after a failure has them if its step was a
         // write step)
-        coordP_ = -1;
+        state_.coordP = -1;
     }
     else if (nEnd)
     {
@@ -1678,27 +1496,27 @@ void Foam::demCoupling::evolve
         // clears it: the core then reports the count as unknown)
         world_.check
         (
-            dem_world_particle_contacts(world_, coordP_.data(), nullptr),
+            dem_world_particle_contacts(world_, state_.coordP.data(), nullptr),
             "dem_world_particle_contacts"
         );
     }
-    fExtra_.setSize(nExtra);
-    forAll(fExtra_, k)
+    state_.fExtra.setSize(nExtra);
+    forAll(state_.fExtra, k)
     {
-        fExtra_[k].setSize(nEnd);
+        state_.fExtra[k].setSize(nEnd);
     }
     label nSeen = 0;
     DynamicList<int64_t> inserted;
 
     for (label j = 0; j < nEnd; ++j)
     {
-        outIds_[j] = a.id[j];
+        state_.outIds[j] = a.id[j];
         const label s = startOf(a.id[j]);
         if (s < 0)
         {
             inserted.append(a.id[j]);
-            fDrag_[j] = Zero; fGradP_[j] = Zero; etaP_[j] = 0;
-            forAll(fExtra_, k) fExtra_[k][j] = Zero;
+            state_.fDrag[j] = Zero; state_.fGradP[j] = Zero; state_.etaP[j] = 0;
+            forAll(state_.fExtra, k) state_.fExtra[k][j] = Zero;
             continue;
         }
         ++nSeen;
@@ -1709,9 +1527,9 @@ void Foam::demCoupling::evolve
         vector extraRate(Zero);
         forAll(extraForces_, k)
         {
-            fExtra_[k][j] =
+            state_.fExtra[k][j] =
                 (impK[k][s] - maK[k][s]*(toVec(a.v, j) - vStart[s]))/dt;
-            extraRate += fExtra_[k][j];
+            extraRate += state_.fExtra[k][j];
         }
         const vector fpf = dragRate + fPart[s] + extraRate;
         sumParticle += fpf;
@@ -1723,35 +1541,35 @@ void Foam::demCoupling::evolve
 
         // [Z]'s f_d + f'' of this particle (before the set's factor)
         const vector fd = (dragRate + extraRate)/dragFac[s];
-        fDrag_[j] = dragRate;
-        fGradP_[j] = fGP[s];
+        state_.fDrag[j] = dragRate;
+        state_.fGradP[j] = fGP[s];
 
         // applicability index [Z 2.25-2.27], docs/theory.md section 6
         const scalar e = epsP[s];
         const vector fResid =
             fGP[s] - fd*(1 - e)/e + divTauP[s] + rhof_*Vp*g_;
         const vector fTotal = fd/e - rhof_*Vp*g_ + fResid;
-        etaP_[j] = 100*mag(fResid)/max(mag(fTotal), VSMALL);
+        state_.etaP[j] = 100*mag(fResid)/max(mag(fTotal), VSMALL);
         // the bed average takes the particles that the fluid carries in
         // part at least: where its total force is below a tenth of the
         // weight (a bed at rest, no flow yet) the ratio is noise
         // (docs/theory.md section 6)
         if (mag(fTotal) >= etaMinForceRatio*a.density[j]*Vp*mag(g_))
         {
-            etaSum += etaP_[j];
+            etaSum += state_.etaP[j];
             ++etaN;
         }
         ++etaAll;
 
-        deposit(s, exch, Fc, FcHalo);
-        deposit(s, Ksum[s], Kcell, KcellHalo);
-        deposit(s, etaP_[j], etaCell, etaCellHalo);
-        deposit(s, scalar(1), wCell, wCellHalo);
+        map_.deposit(s, exch, Fc, FcHalo);
+        map_.deposit(s, Ksum[s], Kcell, KcellHalo);
+        map_.deposit(s, state_.etaP[j], etaCell, etaCellHalo);
+        map_.deposit(s, scalar(1), wCell, wCellHalo);
     }
-    haloAdd(Fc, FcHalo);
-    haloAdd(Kcell, KcellHalo);
-    haloAdd(etaCell, etaCellHalo);
-    haloAdd(wCell, wCellHalo);
+    map_.haloAdd(Fc, FcHalo);
+    map_.haloAdd(Kcell, KcellHalo);
+    map_.haloAdd(etaCell, etaCellHalo);
+    map_.haloAdd(wCell, wCellHalo);
     if (Pstream::parRun())
     {
         reduce(sumParticle, sumOp<vector>());
@@ -1770,7 +1588,7 @@ void Foam::demCoupling::evolve
             << "demFoam books outlets itself and expects none"
             << exit(FatalError);
     }
-    bedEta_ = {etaN ? etaSum/etaN : 0, etaN, etaAll};
+    state_.bedEta = {etaN ? etaSum/etaN : 0, etaN, etaAll};
 
     // fluid momentum source S = -F + (1 - c_p) grad p - (1 - c_tau) div tau,
     // 1 - c from the solid fraction of the same weights (exact, unclipped)
@@ -1784,7 +1602,7 @@ void Foam::demCoupling::evolve
         vector S = -F_[c];
         if (pEps)
         {
-            S += (1 - epsRaw_[c])*(rhof_*gradPc[c] + G_);
+            S += (1 - epsRaw_[c])*(rhof_*gradPc[c] + state_.G);
         }
         if (tauEps)
         {
@@ -1851,17 +1669,17 @@ void Foam::demCoupling::extraForceFields
     if (needA)
     {
         // Du/Dt = du/dt + (u.grad)u; du/dt from U of this and the last
-        // step (U is the field of the end of the previous step; Uprev_ the
+        // step (U is the field of the end of the previous step; state_.Uprev the
         // one of the step before, kept with its time index; the step
         // between them is deltaT0, which a restart reads back exactly)
         DuDt = (U & fvc::grad(U))().primitiveField();
         const label index = mesh_.time().timeIndex();
-        if (Uprev_.size() == mesh_.nCells() && index == indexUprev_ + 1)
+        if (state_.Uprev.size() == mesh_.nCells() && index == state_.indexUprev + 1)
         {
-            DuDt += (U.primitiveField() - Uprev_)/mesh_.time().deltaT0Value();
+            DuDt += (U.primitiveField() - state_.Uprev)/mesh_.time().deltaT0Value();
         }
-        Uprev_ = U.primitiveField();
-        indexUprev_ = index;
+        state_.Uprev = U.primitiveField();
+        state_.indexUprev = index;
     }
 }
 
@@ -1921,9 +1739,9 @@ void Foam::demCoupling::updateDriving(const volVectorField& U)
     {
         if (mag(UsTarget_[k]) < VSMALL) dG[k] = 0;
     }
-    G_ += dG;
+    state_.G += dG;
 
     Info<< "demCoupling: periodic driving: superficial velocity " << Us
-        << " target " << UsTarget_ << ", mean pressure gradient G " << G_
+        << " target " << UsTarget_ << ", mean pressure gradient G " << state_.G
         << " Pa/m" << endl;
 }

@@ -19,6 +19,7 @@ Description
 #include "demCoupling.H"
 #include "demCouplingTools.H"
 #include "extraForce.H"
+#include "keySpec.H"
 #include "OStringStream.H"
 #include <cmath>
 #include <unordered_map>
@@ -29,31 +30,10 @@ namespace
 using namespace Foam;
 using Foam::demTools::toVec;
 
-enum class kind { Scalar, Label, Word, Bool, Vector, List, Dict, Distribution };
-
-struct keySpec
-{
-    word name;
-    kind type;
-    double lo, hi;          // range of Scalar / Label / Distribution values
-    bool loOpen, hiOpen;    // bound excluded
-    wordList words;         // allowed values of a Word (empty: any)
-};
-
-keySpec num(const char* n, kind t, double lo, double hi, bool loOpen, bool hiOpen)
-{
-    return keySpec{n, t, lo, hi, loOpen, hiOpen, wordList()};
-}
-
-keySpec any(const char* n, kind t)
-{
-    return keySpec{n, t, -HUGE_VAL, HUGE_VAL, false, false, wordList()};
-}
-
-keySpec choice(const char* n, const wordList& words)
-{
-    return keySpec{n, kind::Word, 0, 0, false, false, words};
-}
+using kind = keySpec::kind;
+const auto num = &keySpec::num;
+const auto any = &keySpec::any;
+const auto choice = &keySpec::choice;
 
 const double inf = HUGE_VAL;
 
@@ -523,36 +503,16 @@ bool Foam::demCoupling::checkDictionary
     chk.require(dict, "", "materials", "materials { name { ... } }");
     chk.require(dict, "", "wallMaterial", "a name from materials");
 
-    // model coefficients
-    const List<std::pair<word, List<keySpec>>> coeffs
-    ({
-        {"GidaspowCoeffs", List<keySpec>({
-            num("epsSwitch", kind::Scalar, 0, 1, true, true),
-            num("WenYuExponent", kind::Scalar, 0, inf, false, false)})},
-        {"SchillerNaumannCoeffs", List<keySpec>({
-            num("voidageExponent", kind::Scalar, -inf, inf, false, false)})},
-        {"StokesCoeffs", List<keySpec>({
-            num("voidageExponent", kind::Scalar, -inf, inf, false, false)})},
-        {"DiFeliceCoeffs", List<keySpec>()},
-        {"BeetstraCoeffs", List<keySpec>()},
-        {"centreCoeffs", List<keySpec>()},
-        {"dividedCoeffs", List<keySpec>({
-            num("nLattice", kind::Label, 2, 12, false, false)})},
-        {"smoothedCoeffs", List<keySpec>({
-            num("nLayers", kind::Label, 0, 10, false, false),
-            num("bandwidthFactor", kind::Scalar, 0, inf, true, false)})},
-        {"virtualMassCoeffs", List<keySpec>({
-            num("Cvm", kind::Scalar, 0, inf, false, false)})},
-        {"SaffmanLiftCoeffs", List<keySpec>({
-            choice("correction", wordList({"none", "Mei"}))})},
-        {"MagnusLiftCoeffs", List<keySpec>({
-            choice("lift", wordList({"RubinowKeller", "OesterleBuiDinh"}))})}
-    });
-    for (const auto& c : coeffs)
+    // model coefficients: each model lists its own (keySpec.H)
+    for (const wordList* models : {&drags, &voidages, &forces})
     {
-        if (dict.isDict(c.first))
+        for (const word& m : *models)
         {
-            chk.check(dict.subDict(c.first), c.first + "/", c.second);
+            const word name(m + "Coeffs");
+            if (dict.isDict(name))
+            {
+                chk.check(dict.subDict(name), name + "/", keySpec::coeffKeysOf(name));
+            }
         }
     }
 
