@@ -40,14 +40,14 @@ void Foam::demCoupling::report(const bool full) const
     if (rampTime_ > 0)
     {
         Info<< " (ramping in " << solidVolumeRamp_ << ", "
-            << label(rampStart_.size()) << " particles)";
+            << label(state_.rampStart.size()) << " particles)";
     }
     Info<< nl;
     bed_.report();
-    if (bedEta_.n)
+    if (state_.bedEta.n)
     {
-        Info<< "demCoupling: bed-average eta " << bedEta_.mean << " % ("
-            << bedEta_.n << " of " << bedEta_.all << " particles: those "
+        Info<< "demCoupling: bed-average eta " << state_.bedEta.mean << " % ("
+            << state_.bedEta.n << " of " << state_.bedEta.all << " particles: those "
             << "whose fluid force is at least " << 100*etaMinForceRatio
             << " % of their weight)" << endl;
     }
@@ -60,13 +60,13 @@ void Foam::demCoupling::report(const bool full) const
 
     if
     (
-        formulation_->type() == "setIII"
-     && bedEta_.n
-     && bedEta_.mean > etaWarning_
+        formulation_->assumesNoFluidAcceleration()
+     && state_.bedEta.n
+     && state_.bedEta.mean > etaWarning_
     )
     {
         WarningInFunction
-            << "set III with bed-average eta " << bedEta_.mean
+            << "set III with bed-average eta " << state_.bedEta.mean
             << " % above etaWarning " << etaWarning_ << " %: set III assumes "
             << "negligible fluid acceleration ([Z] 2.10); use setI or setII"
             << endl;
@@ -85,7 +85,7 @@ void Foam::demCoupling::report(const bool full) const
     // booked as unknown)
     labelList lost
     (
-        SubList<label>(lostPerPatch_, mesh_.boundaryMesh().nNonProcessor())
+        SubList<label>(state_.lostPerPatch, mesh_.boundaryMesh().nNonProcessor())
     );
     Pstream::listCombineGather(lost, plusEqOp<label>());
     forAll(lost, patchi)
@@ -141,10 +141,10 @@ void Foam::demCoupling::write() const
     }
 
     // per-particle results of the last coupling step, by id
-    Map<label> outIndex(2*outIds_.size() + 1);
-    forAll(outIds_, j)
+    Map<label> outIndex(2*state_.outIds.size() + 1);
+    forAll(state_.outIds, j)
     {
-        outIndex.insert(label(outIds_[j]), j);
+        outIndex.insert(label(state_.outIds[j]), j);
     }
 
     IOField<scalar> d(cloud.fieldIOobject("d", IOobject::NO_READ), n);
@@ -185,13 +185,13 @@ void Foam::demCoupling::write() const
             missing.append(i);
             continue;
         }
-        Fdrag[i] = fDrag_[*iter];
-        FgradP[i] = fGradP_[*iter];
-        eta[i] = etaP_[*iter];
-        coordination[i] = coordP_[*iter];
+        Fdrag[i] = state_.fDrag[*iter];
+        FgradP[i] = state_.fGradP[*iter];
+        eta[i] = state_.etaP[*iter];
+        coordination[i] = state_.coordP[*iter];
         forAll(Fextra, k)
         {
-            Fextra[k][i] = fExtra_[k][*iter];
+            Fextra[k][i] = state_.fExtra[k][*iter];
         }
     }
 
@@ -239,7 +239,7 @@ void Foam::demCoupling::write() const
 
 // Results of the last coupling step of the particles slots (indices into
 // id and the output fields) from the processors that held them then
-// (outIndex: this processor's index of outIds_ by id); returns how many
+// (outIndex: this processor's index of state_.outIds by id); returns how many
 // no processor had.  Collective: every processor calls it with its own
 // request (possibly empty).
 Foam::label Foam::demCoupling::resultsOf
@@ -282,13 +282,13 @@ Foam::label Foam::demCoupling::resultsOf
             if (!iter.found()) continue;
             const label j = *iter;
             aIds.append(pid);
-            aFd.append(fDrag_[j]);
-            aFgp.append(fGradP_[j]);
-            aEt.append(etaP_[j]);
-            aCo.append(coordP_[j]);
+            aFd.append(state_.fDrag[j]);
+            aFgp.append(state_.fGradP[j]);
+            aEt.append(state_.etaP[j]);
+            aCo.append(state_.coordP[j]);
             forAll(aFx, k)
             {
-                aFx[k].append(fExtra_[k][j]);
+                aFx[k].append(state_.fExtra[k][j]);
             }
         }
         UOPstream os(proci, pBufs);
@@ -349,19 +349,19 @@ void Foam::demCoupling::writeCouplingState(const fileName& file) const
 {
     std::ofstream os(file.c_str(), std::ios::binary);
     const char magic[8] = {'D', 'E', 'M', 'C', 'P', 'L', '2', '\0'};
-    const int64_t n = Uprev_.size();
+    const int64_t n = state_.Uprev.size();
     os.write(magic, sizeof magic);
     os.write(reinterpret_cast<const char*>(&n), sizeof n);
-    const int64_t index = indexUprev_;
+    const int64_t index = state_.indexUprev;
     os.write(reinterpret_cast<const char*>(&index), sizeof index);
-    os.write(reinterpret_cast<const char*>(G_.cdata()), 3*sizeof(scalar));
+    os.write(reinterpret_cast<const char*>(state_.G.cdata()), 3*sizeof(scalar));
     if (n)
     {
-        os.write(reinterpret_cast<const char*>(Uprev_.cdata()), 3*n*sizeof(scalar));
+        os.write(reinterpret_cast<const char*>(state_.Uprev.cdata()), 3*n*sizeof(scalar));
     }
-    const int64_t nRamp = rampStart_.size();
+    const int64_t nRamp = state_.rampStart.size();
     os.write(reinterpret_cast<const char*>(&nRamp), sizeof nRamp);
-    for (const auto& r : rampStart_)
+    for (const auto& r : state_.rampStart)
     {
         os.write(reinterpret_cast<const char*>(&r.first), sizeof r.first);
         os.write(reinterpret_cast<const char*>(&r.second), sizeof r.second);
@@ -401,14 +401,14 @@ void Foam::demCoupling::readCouplingState
     }
     int64_t index = -2;
     is.read(reinterpret_cast<char*>(&index), sizeof index);
-    indexUprev_ = label(index);
-    is.read(reinterpret_cast<char*>(G_.data()), 3*sizeof(scalar));
-    Uprev_.setSize(n);
+    state_.indexUprev = label(index);
+    is.read(reinterpret_cast<char*>(state_.G.data()), 3*sizeof(scalar));
+    state_.Uprev.setSize(n);
     if (n)
     {
-        is.read(reinterpret_cast<char*>(Uprev_.data()), 3*n*sizeof(scalar));
+        is.read(reinterpret_cast<char*>(state_.Uprev.data()), 3*n*sizeof(scalar));
     }
-    rampStart_.clear();
+    state_.rampStart.clear();
     if (is.good() && is.peek() == std::ifstream::traits_type::eof())
     {
         is.clear();     // a file from before the ramps: none
@@ -423,13 +423,13 @@ void Foam::demCoupling::readCouplingState
             scalar t0;
             is.read(reinterpret_cast<char*>(&id), sizeof id);
             is.read(reinterpret_cast<char*>(&t0), sizeof t0);
-            rampStart_[id] = t0;
+            state_.rampStart[id] = t0;
         }
     }
     if (otherMesh)
     {
-        Uprev_.clear();
-        indexUprev_ = -2;
+        state_.Uprev.clear();
+        state_.indexUprev = -2;
         Info<< "demCoupling: " << file << " is of the serial mesh: the fluid "
             << "velocity of the last step is not carried over" << endl;
     }

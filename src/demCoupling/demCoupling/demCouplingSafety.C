@@ -50,19 +50,7 @@ void Foam::demCoupling::checkpoint()
         dem_world_save_memory(world_, &snapBuf_, &snapCapacity_, &snapSize_),
         "dem_world_save_memory"
     );
-    snapLostPerPatch_ = lostPerPatch_;
-    snapLostUnknown_ = lostUnknown_;
-    snapOutIds_ = outIds_;
-    snapFDrag_ = fDrag_;
-    snapFGradP_ = fGradP_;
-    snapEtaP_ = etaP_;
-    snapCoordP_ = coordP_;
-    snapFExtra_ = fExtra_;
-    snapBedEta_ = bedEta_;
-    snapUprev_ = Uprev_;
-    snapIndexUprev_ = indexUprev_;
-    snapG_ = G_;
-    snapRampStart_ = rampStart_;
+    saved_ = state_;
     snapVec_.setSize(3);
     snapVec_[0] = F_.primitiveField();
     snapVec_[1] = source_.primitiveField();
@@ -88,19 +76,7 @@ void Foam::demCoupling::restoreCheckpoint()
         dem_world_restore_memory(world_, snapBuf_, snapSize_),
         "dem_world_restore_memory"
     );
-    lostPerPatch_ = snapLostPerPatch_;
-    lostUnknown_ = snapLostUnknown_;
-    outIds_ = snapOutIds_;
-    fDrag_ = snapFDrag_;
-    fGradP_ = snapFGradP_;
-    etaP_ = snapEtaP_;
-    coordP_ = snapCoordP_;
-    fExtra_ = snapFExtra_;
-    bedEta_ = snapBedEta_;
-    Uprev_ = snapUprev_;
-    indexUprev_ = snapIndexUprev_;
-    G_ = snapG_;
-    rampStart_ = snapRampStart_;
+    state_ = saved_;
     F_.primitiveFieldRef() = snapVec_[0];
     source_.primitiveFieldRef() = snapVec_[1];
     Ucoup_.primitiveFieldRef() = snapVec_[2];
@@ -275,7 +251,7 @@ void Foam::demCoupling::progress(const bool force)
         os  << " communication " << label(100*tComm_/total + 0.5)
             << " % (most on one processor " << label(100*tComm/total + 0.5)
             << " %), particle volume across processors "
-            << int64_t(returnReduce(haloParticleSteps_, sumOp<scalar>()))
+            << int64_t(returnReduce(map_.haloParticleSteps(), sumOp<scalar>()))
             << " particle-steps";
     }
     Info<< os.str().c_str() << endl;

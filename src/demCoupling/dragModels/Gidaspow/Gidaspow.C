@@ -14,8 +14,21 @@ namespace dragModels
 {
     defineTypeNameAndDebug(Gidaspow, 0);
     addToRunTimeSelectionTable(dragModel, Gidaspow, dictionary);
+    addCoeffKeys(Gidaspow);
 }
 }
+
+Foam::List<Foam::keySpec> Foam::dragModels::Gidaspow::coeffKeys()
+{
+    using kind = keySpec::kind;
+    const double inf = HUGE_VAL;
+    return List<keySpec>
+    ({
+        keySpec::num("epsSwitch", kind::Scalar, 0, 1, true, true),
+        keySpec::num("WenYuExponent", kind::Scalar, 0, inf, false, false)
+    });
+}
+
 
 Foam::dragModels::Gidaspow::Gidaspow(const dictionary& dict)
 :

@@ -14,8 +14,20 @@ namespace dragModels
 {
     defineTypeNameAndDebug(SchillerNaumann, 0);
     addToRunTimeSelectionTable(dragModel, SchillerNaumann, dictionary);
+    addCoeffKeys(SchillerNaumann);
 }
 }
+
+Foam::List<Foam::keySpec> Foam::dragModels::SchillerNaumann::coeffKeys()
+{
+    using kind = keySpec::kind;
+    const double inf = HUGE_VAL;
+    return List<keySpec>
+    ({
+        keySpec::num("voidageExponent", kind::Scalar, -inf, inf, false, false)
+    });
+}
+
 
 Foam::dragModels::SchillerNaumann::SchillerNaumann(const dictionary& dict)
 :

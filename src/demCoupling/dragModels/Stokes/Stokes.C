@@ -14,8 +14,20 @@ namespace dragModels
 {
     defineTypeNameAndDebug(Stokes, 0);
     addToRunTimeSelectionTable(dragModel, Stokes, dictionary);
+    addCoeffKeys(Stokes);
 }
 }
+
+Foam::List<Foam::keySpec> Foam::dragModels::Stokes::coeffKeys()
+{
+    using kind = keySpec::kind;
+    const double inf = HUGE_VAL;
+    return List<keySpec>
+    ({
+        keySpec::num("voidageExponent", kind::Scalar, -inf, inf, false, false)
+    });
+}
+
 
 Foam::dragModels::Stokes::Stokes(const dictionary& dict)
 :

@@ -14,7 +14,17 @@ namespace extraForces
 {
     defineTypeNameAndDebug(MagnusLift, 0);
     addToRunTimeSelectionTable(extraForce, MagnusLift, dictionary);
+    addCoeffKeys(MagnusLift);
 }
+}
+
+
+Foam::List<Foam::keySpec> Foam::extraForces::MagnusLift::coeffKeys()
+{
+    return List<keySpec>
+    ({
+        keySpec::choice("lift", wordList({"RubinowKeller", "OesterleBuiDinh"}))
+    });
 }
 
 

@@ -13,7 +13,17 @@ namespace extraForces
 {
     defineTypeNameAndDebug(SaffmanLift, 0);
     addToRunTimeSelectionTable(extraForce, SaffmanLift, dictionary);
+    addCoeffKeys(SaffmanLift);
 }
+}
+
+
+Foam::List<Foam::keySpec> Foam::extraForces::SaffmanLift::coeffKeys()
+{
+    return List<keySpec>
+    ({
+        keySpec::choice("correction", wordList({"none", "Mei"}))
+    });
 }
 
 

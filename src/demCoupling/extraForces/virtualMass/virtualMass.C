@@ -14,7 +14,19 @@ namespace extraForces
 {
     defineTypeNameAndDebug(virtualMass, 0);
     addToRunTimeSelectionTable(extraForce, virtualMass, dictionary);
+    addCoeffKeys(virtualMass);
 }
+}
+
+
+Foam::List<Foam::keySpec> Foam::extraForces::virtualMass::coeffKeys()
+{
+    using kind = keySpec::kind;
+    const double inf = HUGE_VAL;
+    return List<keySpec>
+    ({
+        keySpec::num("Cvm", kind::Scalar, 0, inf, false, false)
+    });
 }
 
 

@@ -14,8 +14,19 @@ namespace voidageModels
 {
     defineTypeNameAndDebug(divided, 0);
     addToRunTimeSelectionTable(voidageModel, divided, dictionary);
+    addCoeffKeys(divided);
 }
 }
+
+Foam::List<Foam::keySpec> Foam::voidageModels::divided::coeffKeys()
+{
+    using kind = keySpec::kind;
+    return List<keySpec>
+    ({
+        keySpec::num("nLattice", kind::Label, 2, 12, false, false)
+    });
+}
+
 
 Foam::voidageModels::divided::divided
 (

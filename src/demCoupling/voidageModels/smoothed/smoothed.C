@@ -13,8 +13,21 @@ namespace voidageModels
 {
     defineTypeNameAndDebug(smoothed, 0);
     addToRunTimeSelectionTable(voidageModel, smoothed, dictionary);
+    addCoeffKeys(smoothed);
 }
 }
+
+Foam::List<Foam::keySpec> Foam::voidageModels::smoothed::coeffKeys()
+{
+    using kind = keySpec::kind;
+    const double inf = HUGE_VAL;
+    return List<keySpec>
+    ({
+        keySpec::num("nLayers", kind::Label, 0, 10, false, false),
+        keySpec::num("bandwidthFactor", kind::Scalar, 0, inf, true, false)
+    });
+}
+
 
 Foam::voidageModels::smoothed::smoothed
 (

@@ -4,14 +4,16 @@
   License: GPL-3.0-or-later (see LICENSE)
 
 Description
-    Halo exchange of the divided voidage in decomposed runs (the slots and
-    lists are made by demCoupling::resolveRemote, demCouplingHalo.C).
+    The weights of all particles (compute) and the halo exchange of the
+    divided voidage in decomposed runs (the slots and lists are made by
+    resolveRemote, particleMeshMap.C).
 
 \*---------------------------------------------------------------------------*/
 
 #include "UIPstream.H"
 #include "UOPstream.H"
 #include "UIndirectList.H"
+#include <chrono>
 
 // * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
 
@@ -26,8 +28,41 @@ namespace demHalo
 }
 
 
+template<class Position>
+void Foam::particleMeshMap::compute
+(
+    const voidageModel& voidage,
+    const label n,
+    const double* radius,
+    const labelUList& host,
+    const Position& position
+)
+{
+    wStart_.setSize(n + 1);
+    wCells_.clear();
+    wValues_.clear();
+    // decomposed: the parts in other processors' cells, by particle
+    DynamicList<remoteSample> remote;
+    DynamicList<label> remoteOwner;
+    for (label i = 0; i < n; ++i)
+    {
+        wStart_[i] = wCells_.size();
+        voidage.addWeights
+        (
+            position(i), radius[i], host[i], wCells_, wValues_, remote
+        );
+        while (remoteOwner.size() < remote.size())
+        {
+            remoteOwner.append(i);
+        }
+    }
+    wStart_[n] = wCells_.size();
+    resolveRemote(remoteOwner, remote, host);
+}
+
+
 template<class Type>
-Foam::List<Type> Foam::demCoupling::haloGet(const UList<Type>& f)
+Foam::List<Type> Foam::particleMeshMap::haloGet(const UList<Type>& f)
 {
     // point to point: both sides know the sizes (haloSend_, haloStart_),
     // so there is no exchange of message sizes
@@ -71,7 +106,7 @@ Foam::List<Type> Foam::demCoupling::haloGet(const UList<Type>& f)
 
 
 template<class Type>
-void Foam::demCoupling::haloAdd(UList<Type>& f, const UList<Type>& acc)
+void Foam::particleMeshMap::haloAdd(UList<Type>& f, const UList<Type>& acc)
 {
     if (!Pstream::parRun() || !haloAny_)
     {

@@ -23,15 +23,39 @@ Description
 
 \*---------------------------------------------------------------------------*/
 
-#include "demCoupling.H"
+#include "particleMeshMap.H"
 #include "Map.H"
+#include <chrono>
+
+// * * * * * * * * * * * * * * * * Constructor * * * * * * * * * * * * * * //
+
+Foam::particleMeshMap::particleMeshMap
+(
+    const fvMesh& mesh,
+    const particleLocator& locator,
+    scalar& commTime
+)
+:
+    mesh_(mesh),
+    locator_(locator),
+    tComm_(commTime),
+    wStart_(),
+    wCells_(),
+    wValues_(),
+    haloSend_(),
+    haloStart_(2, Zero),
+    haloAny_(false),
+    haloParticleSteps_(0)
+{}
+
 
 // * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
 
-void Foam::demCoupling::resolveRemote
+void Foam::particleMeshMap::resolveRemote
 (
     const labelUList& owner,
-    const UList<remoteSample>& remote
+    const UList<remoteSample>& remote,
+    const labelUList& host
 )
 {
     const label nProcs = Pstream::nProcs();
@@ -228,7 +252,7 @@ void Foam::demCoupling::resolveRemote
         {
             across = across || (resProc[k] >= 0 && resProc[k] != me);
             const label code =
-                resProc[k] < 0 ? host_[i]
+                resProc[k] < 0 ? host[i]
               : resProc[k] == me ? resCell[k]
               : -1 - (haloStart_[resProc[k]] + resCell[k]);
             bool found = false;

@@ -1,0 +1,211 @@
+/*---------------------------------------------------------------------------*\
+  demFoam
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+
+Description
+    The particle cloud on the mesh: locating every particle (steps 1 and 5
+    of evolve(), demCoupling.H), removing those outside the mesh, booked on
+    their outlet patch or counted as lost, and the records of the removed
+    particles (postProcessing/demOutlets).
+
+\*---------------------------------------------------------------------------*/
+
+#include "demCoupling.H"
+#include "timeCompletion.H"
+#include "dictionaryFileCheck.H"
+#include "demCouplingTools.H"
+#include "OStringStream.H"
+#include <limits>
+#include "fvc.H"
+#include "fvm.H"
+#include "cyclicPolyPatch.H"
+#include "processorPolyPatch.H"
+#include "processorCyclicPolyPatch.H"
+#include "mathematicalConstants.H"
+#include "OSspecific.H"
+#include <fstream>
+
+using namespace Foam::constant::mathematical;
+using namespace Foam::demTools;
+
+// * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
+
+Foam::label Foam::demCoupling::lostTotal() const
+{
+    return returnReduce(state_.lostUnknown + sum(state_.lostPerPatch), sumOp<label>());
+}
+
+
+void Foam::demCoupling::locateAll()
+{
+    dem_arrays a = world_.arrays();
+    const label n = label(a.n_owned);
+
+    DynamicList<label> leaving;
+    DynamicList<label> leavingFace;
+
+    for (label i = 0; i < n; ++i)
+    {
+        label& host = idSlot(hostById_, a.id[i]);
+        label exitFace = -1;
+        const label c = locator_.locate(wrapped(a, i), host, exitFace);
+        host = c;
+        if (c < 0)
+        {
+            leaving.append(i);
+            leavingFace.append(exitFace);
+        }
+    }
+
+    // decomposed: those in another processor's cells move there
+    // (and the patch those that left through a processor face then left
+    // the domain by on the other side)
+    boolList taken(leaving.size(), false);
+    labelList exitPatch(leaving.size(), -1);
+    if (Pstream::parRun())
+    {
+        migrate(leaving, leavingFace, taken, exitPatch);
+        a = world_.arrays();
+    }
+
+    // remove from the highest index down (removal swaps with the last)
+    label nOut = 0, nLost = 0;
+    for (label k = leaving.size() - 1; k >= 0; --k)
+    {
+        if (taken[k])
+        {
+            world_.check
+            (
+                dem_world_remove_particle(world_, size_t(leaving[k]), -1),
+                "dem_world_remove_particle"
+            );
+            continue;
+        }
+        label patchi =
+            exitPatch[k] >= 0 ? exitPatch[k]
+          : leavingFace[k] >= 0 ? mesh_.boundaryMesh().whichPatch(leavingFace[k])
+          : -1;
+        if (patchi >= 0 && isA<processorPolyPatch>(mesh_.boundaryMesh()[patchi]))
+        {
+            // through a processor boundary into no processor's cells
+            patchi = -1;
+        }
+        const label o = (patchi >= 0 ? outletPatches_.find(patchi) : -1);
+        if (o >= 0)
+        {
+            ++nOut;
+        }
+        else
+        {
+            ++nLost;
+            if (patchi >= 0) ++state_.lostPerPatch[patchi]; else ++state_.lostUnknown;
+            const vector x(toVec(a.x, leaving[k]));
+            OStringStream msg;
+            msg << "particle " << label(a.id[leaving[k]]) << " at " << x
+                << " left the mesh through "
+                << (patchi >= 0 ? mesh_.boundaryMesh()[patchi].name() : word("an unknown patch"))
+                << ", which is not an outlet; removed and counted as lost";
+            if (Pstream::parRun())
+            {
+                // (Warning prints on the master only)
+                Pout<< "--> FOAM Warning : " << msg.str().c_str() << endl;
+            }
+            else
+            {
+                WarningInFunction << msg.str().c_str() << endl;
+            }
+        }
+        world_.check
+        (
+            dem_world_remove_particle
+            (
+                world_, size_t(leaving[k]), o >= 0 ? outletIds_[o] : -1
+            ),
+            "dem_world_remove_particle"
+        );
+    }
+    reduce(nOut, sumOp<label>());
+    reduce(nLost, sumOp<label>());
+    if (nOut + nLost > 0)
+    {
+        Info<< "demCoupling: " << nOut << " particles left through outlets, "
+            << nLost << " lost" << endl;
+    }
+    const label lost = nLost ? lostTotal() : 0;
+    if (nLost && lost > maxLost_ && failure_.empty())
+    {
+        OStringStream os;
+        os  << lost << " particles lost in total (left the mesh through"
+            << " patches that are not in outletPatches, see the warnings"
+            << " above); constant/demProperties allows maxLostParticles "
+            << maxLost_ << ". Make the patch an outlet (outletPatches), fix"
+            << " the walls, lower the time steps, or raise maxLostParticles";
+        failure_ = os.str();
+    }
+    if (nOut > 0)
+    {
+        writeRemovedRecords();
+    }
+
+    a = world_.arrays();
+    host_.setSize(label(a.n_owned));
+    forAll(host_, i)
+    {
+        host_[i] = hostById_[a.id[i]];
+    }
+}
+
+
+void Foam::demCoupling::writeRemovedRecords()
+{
+    const dem_removed_record* rec = nullptr;
+    size_t nRec = 0;
+    world_.check
+    (
+        dem_world_removed_records(world_, &rec, &nRec),
+        "dem_world_removed_records"
+    );
+    OStringStream lines;
+    lines.precision(10);
+    for (size_t k = 0; k < nRec; ++k)
+    {
+        const label o = outletIds_.find(rec[k].outlet);
+        const word patch =
+            o >= 0
+          ? mesh_.boundaryMesh()[outletPatches_[o]].name()
+          : word("none");
+        lines
+            << mesh_.time().value() << ' ' << label(rec[k].id) << ' '
+            << rec[k].diameter << ' ' << rec[k].density << ' '
+            << patch << nl;
+    }
+    dem_world_clear_removed_records(world_);
+
+    // decomposed: the master writes the records of all processors
+    List<string> all(Pstream::nProcs());
+    all[Pstream::myProcNo()] = lines.str();
+    Pstream::gatherList(all);
+    if (!Pstream::master()) return;
+
+    const fileName dir
+    (
+        mesh_.time().globalPath()/"postProcessing"/"demOutlets"
+       /mesh_.time().timeName(mesh_.time().startTime().value())
+    );
+    mkDir(dir);
+    const fileName file(dir/"removed.dat");
+    const bool fresh = !isFile(file);
+    std::ofstream os(file.c_str(), std::ios::app);
+    if (fresh)
+    {
+        os << "# time id d rho outletPatch\n";
+    }
+    for (const string& l : all)
+    {
+        os << l;
+    }
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,477 @@
+/*---------------------------------------------------------------------------*\
+  demFoam
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+
+Description
+    One fluid time step of the coupling, evolve(): the steps 1-5 listed in
+    demCoupling.H, and the cell fields the extra forces need.
+
+\*---------------------------------------------------------------------------*/
+
+#include "demCoupling.H"
+#include "timeCompletion.H"
+#include "dictionaryFileCheck.H"
+#include "demCouplingTools.H"
+#include "OStringStream.H"
+#include <limits>
+#include "fvc.H"
+#include "fvm.H"
+#include "cyclicPolyPatch.H"
+#include "processorPolyPatch.H"
+#include "processorCyclicPolyPatch.H"
+#include "mathematicalConstants.H"
+#include "OSspecific.H"
+#include <fstream>
+
+using namespace Foam::constant::mathematical;
+using namespace Foam::demTools;
+
+// * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
+
+void Foam::demCoupling::evolve
+(
+    const volVectorField& U,
+    const volScalarField& p,
+    const volVectorField& divTauKin,
+    const volScalarField& nu
+)
+{
+    const auto tEvolve0 = std::chrono::steady_clock::now();
+    const scalar tDem0 = tDem_;
+    const scalar tComm0 = tComm_;
+
+    const scalar dt = mesh_.time().deltaTValue();
+    const label nDem = subSteps(dt);
+    nSubCycles_ = nDem;
+
+    // 1-2: positions at the start of the step (located by the last call).
+    // Per-particle data below are indexed by the start index s; the core
+    // may re-sort its storage inside dem_world_step, so the current index
+    // is mapped back to s through the particle id.
+    dem_arrays a = world_.arrays();
+    const label n = label(a.n_owned);
+
+    const volVectorField gradPKin(fvc::grad(p));
+    const vectorField& Uc = U.primitiveField();
+    const vectorField& gradPc = gradPKin.primitiveField();
+    const vectorField& divTc = divTauKin.primitiveField();
+    const scalarField& epsc = eps_.primitiveField();
+    const scalarField& nuc = nu.primitiveField();
+    const scalarField& V = mesh_.V();
+    const couplingFormulation& form = formulation_();
+
+    // optional forces f'' (extraForces/): fluid vorticity and acceleration
+    // at the particles, the explicit impulse and the added mass per force
+    const label nExtra = extraForces_.size();
+    vectorField vortCell, DuDtCell;
+    extraForceFields(U, vortCell, DuDtCell);
+    List<vector> vortP(nExtra ? n : 0), DuDtP(nExtra ? n : 0);
+    List<vector> vStart(nExtra ? n : 0);
+    List<scalarField> maK(nExtra, scalarField(n, 0));
+    List<List<vector>> impK(nExtra, List<vector>(n, Zero));
+
+    List<vector> uF(n), fGP(n), fExch(n), fPart(n), divTauP(n);
+    scalarField epsP(n), muP(n), dragFac(n), Ksum(n, 0);
+
+    // id -> start index
+    for (label s = 0; s < n; ++s)
+    {
+        idSlot(startById_, a.id[s]) = s;
+    }
+    auto startIndex = [&](const int64_t id) -> label
+    {
+        if (id < 0 || id >= startById_.size()) return -1;
+        const label s = startById_[id];
+        return (s >= 0 && s < n && a.id[s] == id) ? s : -1;
+    };
+    // ids by start index (a.id may be reordered later)
+    List<int64_t> idStart(n);
+    for (label s = 0; s < n; ++s) idStart[s] = a.id[s];
+    auto startOf = [&](const int64_t id) -> label
+    {
+        if (id < 0 || id >= startById_.size()) return -1;
+        const label s = startById_[id];
+        return (s >= 0 && s < n && idStart[s] == id) ? s : -1;
+    };
+    (void)startIndex;
+
+    // cell-mean particle velocity (for the cell-mean drag variant)
+    const vectorField& vsCell = Up_.primitiveField();
+
+    // the particle volume the fluid sees (the voidage of this step; less
+    // while an insertion ramp runs): the forces that scale with it, and
+    // their share of the exchange, use the same volume, so that the
+    // momentum exchange stays exact
+    scalarField VpS(n);
+    for (label s = 0; s < n; ++s)
+    {
+        VpS[s] =
+            rampWeight(a.id[s], voidageTime_)*4.0/3.0*pi*pow3(a.radius[s]);
+    }
+
+    // the same in the other processors' cells of the weights (halo)
+    const List<vector> UcH(map_.haloGet(Uc));
+    const List<vector> gradPcH(map_.haloGet(gradPc));
+    const List<vector> divTcH(map_.haloGet(divTc));
+    const List<scalar> epscH(map_.haloGet(epsc));
+    const List<scalar> nucH(map_.haloGet(nuc));
+    const List<vector> vortH(nExtra ? map_.haloGet(vortCell) : List<vector>());
+    const List<vector> DuDtH(nExtra ? map_.haloGet(DuDtCell) : List<vector>());
+    const List<vector> vsCellH
+    (
+        cellMeanDrag_ ? map_.haloGet(vsCell) : List<vector>()
+    );
+
+    for (label s = 0; s < n; ++s)
+    {
+        const scalar Vp = VpS[s];
+        uF[s] = map_.interp(s, Uc, UcH);
+        const vector gp = rhof_*map_.interp(s, gradPc, gradPcH) + state_.G;
+        const vector dtau = rhof_*map_.interp(s, divTc, divTcH);
+        epsP[s] = map_.interp(s, epsc, epscH);
+        muP[s] = rhof_*map_.interp(s, nuc, nucH);
+        dragFac[s] = form.dragFactor(epsP[s]);
+        fGP[s] = -Vp*gp;
+        divTauP[s] = Vp*dtau;
+        form.explicitForces(Vp, gp, dtau, rhof_, g_, fPart[s], fExch[s]);
+        setVec(a.force_ext, s, fPart[s]);
+        setVec(a.torque_ext, s, vector::zero);
+        setVec(a.drag_impulse, s, vector::zero);
+        scalar ma = 0;
+        if (nExtra)
+        {
+            vortP[s] = map_.interp(s, vortCell, vortH);
+            DuDtP[s] = map_.interp(s, DuDtCell, DuDtH);
+            vStart[s] = toVec(a.v, s);
+            forAll(extraForces_, k)
+            {
+                maK[k][s] = dragFac[s]
+                   *extraForces_[k].addedMass(2*a.radius[s], rhof_, epsP[s]);
+                ma += maK[k][s];
+            }
+        }
+        a.added_mass[s] = ma;
+    }
+
+    // 3: DEM sub-steps with drag re-evaluated every chunk
+    const label chunk =
+        dragUpdateInterval_ > 0 ? min(dragUpdateInterval_, nDem) : nDem;
+
+    label done = 0;
+    while (done < nDem)
+    {
+        const label m = min(chunk, nDem - done);
+        a = world_.arrays();
+        for (label j = 0; j < label(a.n_owned); ++j)
+        {
+            const label s = startOf(a.id[j]);
+            if (s < 0)
+            {
+                // inserted during this fluid step: no drag until located
+                a.drag_coeff[j] = 0;
+                setVec(a.fluid_velocity, j, vector::zero);
+                continue;
+            }
+            const vector v(toVec(a.v, j));
+            vector slip = uF[s] - v;
+            vector uf = uF[s];
+            if (cellMeanDrag_)
+            {
+                // [S] method 1: drag from the cell-mean particle velocity
+                const vector vs = map_.interp(s, vsCell, vsCellH);
+                slip = uF[s] - vs;
+                uf = uF[s] - vs + v;
+            }
+            const scalar K =
+                drag_->K(2*a.radius[j], epsP[s], mag(slip), rhof_, muP[s])
+               *dragFac[s];
+            a.drag_coeff[j] = K;
+            setVec(a.fluid_velocity, j, uf);
+            Ksum[s] += K*m/nDem;
+            if (nExtra)
+            {
+                // explicit extra forces (times the set's factor), held
+                // over this drag update
+                extraForce::particleState st;
+                st.d = 2*a.radius[j];
+                st.v = v;
+                st.omega = toVec(a.omega, j);
+                st.u = uF[s];
+                st.vorticity = vortP[s];
+                st.DuDt = DuDtP[s];
+                st.rhof = rhof_;
+                st.muf = muP[s];
+                st.eps = epsP[s];
+                vector fx(Zero);
+                forAll(extraForces_, k)
+                {
+                    const vector f = dragFac[s]*extraForces_[k].force(st);
+                    impK[k][s] += f*(m*demDt_);
+                    fx += f;
+                }
+                setVec(a.force_ext, j, fPart[s] + fx);
+            }
+            if (frozen_)
+            {
+                // fixed bed: no DEM motion; the exchange is the drag at v
+                const vector imp =
+                    toVec(a.drag_impulse, j) + K*(uf - v)*m*demDt_;
+                setVec(a.drag_impulse, j, imp);
+            }
+        }
+        if (!frozen_)
+        {
+            if (injectParticleNaN_ == nSteps_ + 1 && done == 0 && a.n_owned)
+            {
+                a.v[0] = std::numeric_limits<double>::quiet_NaN();
+            }
+            const auto t0 = std::chrono::steady_clock::now();
+            const scalar tCommStep0 = tComm_;
+            const dem_status st =
+                Pstream::parRun() ? ghosts_.step(m, failure_) : world_.tryStep(m);
+            tDem_ += std::chrono::duration<scalar>
+            (
+                std::chrono::steady_clock::now() - t0
+            ).count()
+              - (tComm_ - tCommStep0);
+            if (st != DEM_OK)
+            {
+                // (decomposed: set by processorGhosts::step, naming the processor)
+                if (failure_.empty())
+                {
+                    failure_ = std::string("DEM core: ")
+                      + dem_status_string(st) + ": " + world_.lastError();
+                }
+                ++nSteps_;
+                return;
+            }
+        }
+        done += m;
+    }
+
+    // 4: exchange, eta, balance (start-of-step weights)
+    a = world_.arrays();
+    const label nEnd = label(a.n_owned);
+
+    vectorField Fc(mesh_.nCells(), Zero);
+    scalarField Kcell(mesh_.nCells(), 0);
+    vector sumParticle(Zero);
+    vector sumDrag(Zero), sumGradP(Zero), sumTau(Zero);
+    scalar sumMagParticle = 0;
+    scalar etaSum = 0;
+    label etaN = 0, etaAll = 0;
+    scalarField etaCell(mesh_.nCells(), 0);
+    scalarField wCell(mesh_.nCells(), 0);
+    const label nHalo = map_.nHalo();
+    vectorField FcHalo(nHalo, Zero);
+    scalarField KcellHalo(nHalo, 0), etaCellHalo(nHalo, 0), wCellHalo(nHalo, 0);
+
+    state_.outIds.setSize(nEnd);
+    state_.fDrag.setSize(nEnd);
+    state_.fGradP.setSize(nEnd);
+    state_.etaP.setSize(nEnd);
+    state_.coordP.setSize(nEnd);
+    if (frozen_ || !writeStep())
+    {
+        // not counted: a fixed bed never evaluates contacts, and only
+        // write steps write them (a count costs about 0.1 DEM step; a
+        // last good state after a failure has them if its step was a
+        // write step)
+        state_.coordP = -1;
+    }
+    else if (nEnd)
+    {
+        // now, while the sub-steps' neighbour list is valid (a migration
+        // clears it: the core then reports the count as unknown)
+        world_.check
+        (
+            dem_world_particle_contacts(world_, state_.coordP.data(), nullptr),
+            "dem_world_particle_contacts"
+        );
+    }
+    state_.fExtra.setSize(nExtra);
+    forAll(state_.fExtra, k)
+    {
+        state_.fExtra[k].setSize(nEnd);
+    }
+    label nSeen = 0;
+    DynamicList<int64_t> inserted;
+
+    for (label j = 0; j < nEnd; ++j)
+    {
+        state_.outIds[j] = a.id[j];
+        const label s = startOf(a.id[j]);
+        if (s < 0)
+        {
+            inserted.append(a.id[j]);
+            state_.fDrag[j] = Zero; state_.fGradP[j] = Zero; state_.etaP[j] = 0;
+            forAll(state_.fExtra, k) state_.fExtra[k][j] = Zero;
+            continue;
+        }
+        ++nSeen;
+        const scalar Vp = VpS[s];
+        const vector dragRate = toVec(a.drag_impulse, j)/dt;
+        // extra forces: explicit impulse plus the implicit added-mass part
+        // -m_a (v_end - v_start) (exactly what the core applied)
+        vector extraRate(Zero);
+        forAll(extraForces_, k)
+        {
+            state_.fExtra[k][j] =
+                (impK[k][s] - maK[k][s]*(toVec(a.v, j) - vStart[s]))/dt;
+            extraRate += state_.fExtra[k][j];
+        }
+        const vector fpf = dragRate + fPart[s] + extraRate;
+        sumParticle += fpf;
+        sumDrag += dragRate;
+        sumGradP += fGP[s];
+        sumTau += divTauP[s];
+        sumMagParticle += mag(fpf);
+        const vector exch = dragRate + fExch[s] + extraRate;
+
+        // [Z]'s f_d + f'' of this particle (before the set's factor)
+        const vector fd = (dragRate + extraRate)/dragFac[s];
+        state_.fDrag[j] = dragRate;
+        state_.fGradP[j] = fGP[s];
+
+        // applicability index [Z 2.25-2.27], docs/theory.md section 6
+        const scalar e = epsP[s];
+        const vector fResid =
+            fGP[s] - fd*(1 - e)/e + divTauP[s] + rhof_*Vp*g_;
+        const vector fTotal = fd/e - rhof_*Vp*g_ + fResid;
+        state_.etaP[j] = 100*mag(fResid)/max(mag(fTotal), VSMALL);
+        // the bed average takes the particles that the fluid carries in
+        // part at least: where its total force is below a tenth of the
+        // weight (a bed at rest, no flow yet) the ratio is noise
+        // (docs/theory.md section 6)
+        if (mag(fTotal) >= etaMinForceRatio*a.density[j]*Vp*mag(g_))
+        {
+            etaSum += state_.etaP[j];
+            ++etaN;
+        }
+        ++etaAll;
+
+        map_.deposit(s, exch, Fc, FcHalo);
+        map_.deposit(s, Ksum[s], Kcell, KcellHalo);
+        map_.deposit(s, state_.etaP[j], etaCell, etaCellHalo);
+        map_.deposit(s, scalar(1), wCell, wCellHalo);
+    }
+    map_.haloAdd(Fc, FcHalo);
+    map_.haloAdd(Kcell, KcellHalo);
+    map_.haloAdd(etaCell, etaCellHalo);
+    map_.haloAdd(wCell, wCellHalo);
+    if (Pstream::parRun())
+    {
+        reduce(sumParticle, sumOp<vector>());
+        reduce(sumDrag, sumOp<vector>());
+        reduce(sumGradP, sumOp<vector>());
+        reduce(sumTau, sumOp<vector>());
+        reduce(sumMagParticle, sumOp<scalar>());
+        reduce(etaSum, sumOp<scalar>());
+        reduce(etaN, sumOp<label>());
+        reduce(etaAll, sumOp<label>());
+    }
+    if (nSeen != n)
+    {
+        FatalErrorInFunction
+            << n - nSeen << " particles were removed inside dem_world_step; "
+            << "demFoam books outlets itself and expects none"
+            << exit(FatalError);
+    }
+    state_.bedEta = {etaN ? etaSum/etaN : 0, etaN, etaAll};
+
+    // fluid momentum source S = -F + (1 - c_p) grad p - (1 - c_tau) div tau,
+    // 1 - c from the solid fraction of the same weights (exact, unclipped)
+    const bool pEps = form.pressureTimesVoidage();
+    const bool tauEps = form.viscousTimesVoidage();
+    vector sumFluid(Zero);
+    forAll(Fc, c)
+    {
+        F_[c] = Fc[c]/V[c];
+        Kc_[c] = Kcell[c]/V[c];
+        vector S = -F_[c];
+        if (pEps)
+        {
+            S += (1 - epsRaw_[c])*(rhof_*gradPc[c] + state_.G);
+        }
+        if (tauEps)
+        {
+            S -= (1 - epsRaw_[c])*rhof_*divTc[c];
+        }
+        source_[c] = S;
+        sumFluid += S*V[c];
+        eta_[c] = wCell[c] > 0 ? etaCell[c]/wCell[c] : 0;
+    }
+    reduce(sumFluid, sumOp<vector>());
+    sumDrag_ = sumDrag;
+    sumGradP_ = sumGradP;
+    sumTau_ = sumTau;
+    balanceFluidVec_ = sumFluid;
+    balanceParticleVec_ = sumParticle;
+    balanceFluid_ = mag(sumFluid + sumParticle);
+    balanceParticle_ = max(sumMagParticle, VSMALL);
+    Ucoup_.primitiveFieldRef() = Uc;
+
+    // 5: new positions -> voidage for the fluid step
+    startRamp(inserted);
+    locateAll();
+    computeWeights();
+    computeVoidage();
+
+    bed_.sample(world_.arrays(), eps_);
+    bed_.append();
+
+    ++nSteps_;
+    tCoupling_ +=
+        std::chrono::duration<scalar>
+        (
+            std::chrono::steady_clock::now() - tEvolve0
+        ).count()
+      - (tDem_ - tDem0) - (tComm_ - tComm0);
+
+    report(false);
+}
+
+
+void Foam::demCoupling::extraForceFields
+(
+    const volVectorField& U,
+    vectorField& vorticity,
+    vectorField& DuDt
+)
+{
+    if (extraForces_.empty())
+    {
+        return;
+    }
+    bool needW = false, needA = false;
+    forAll(extraForces_, k)
+    {
+        needW = needW || extraForces_[k].needsVorticity();
+        needA = needA || extraForces_[k].needsFluidAcceleration();
+    }
+    vorticity.setSize(mesh_.nCells(), Zero);
+    DuDt.setSize(mesh_.nCells(), Zero);
+    if (needW)
+    {
+        vorticity = fvc::curl(U)().primitiveField();
+    }
+    if (needA)
+    {
+        // Du/Dt = du/dt + (u.grad)u; du/dt from U of this and the last
+        // step (U is the field of the end of the previous step; state_.Uprev the
+        // one of the step before, kept with its time index; the step
+        // between them is deltaT0, which a restart reads back exactly)
+        DuDt = (U & fvc::grad(U))().primitiveField();
+        const label index = mesh_.time().timeIndex();
+        if (state_.Uprev.size() == mesh_.nCells() && index == state_.indexUprev + 1)
+        {
+            DuDt += (U.primitiveField() - state_.Uprev)/mesh_.time().deltaT0Value();
+        }
+        state_.Uprev = U.primitiveField();
+        state_.indexUprev = index;
+    }
+}
+
+
+// ************************************************************************* //
