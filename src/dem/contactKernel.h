@@ -50,6 +50,15 @@ static inline void dem_rotate_history(double *h, const double n[3])
 /* Rolling friction torque on i (j gets the opposite): -mu_r |f_cn| w/|w|,
  * w = w_i - w_j, magnitude limited to |w| / (dt (1/I_i + 1/I_j)) so that it
  * cannot reverse w within a step.  Ii, Ij: moments of inertia (Ij = 0: wall). */
+/* The relative normal velocity at the end of the step, predicted from the
+ * half-step one v (velocity Verlet) with the pair's own force over the last
+ * half step h: v* = v + h (f_el - C v*) / m*, solved for v* (C: the normal
+ * damping coefficient of the contact; docs/theory.md, "Damping in the time step"). */
+static inline double dem_predicted_vn(double vn, double fel, double C, double meff, double h)
+{
+    return (meff * vn + h * fel) / (meff + h * C);
+}
+
 static inline void dem_rolling(double mu_r, double fel, const double *wi, const double *wj,
                                double Ii, double Ij, double dt, double M[3])
 {

@@ -9,7 +9,7 @@
 
 /* Smallest contact time over material pairs present.  v_imp <= 0 with a
  * Hertz law: Rayleigh time only. */
-dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayleigh, double *tc)
+dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayleigh, int damped, double *tc)
 {
     *tc = INFINITY;
     int nm = w->nmat;
@@ -43,7 +43,7 @@ dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayle
                 if (wall && !wallmat[b]) continue;
                 if (!isfinite(meff)) continue;
                 const dem_time_pair tp = {q, &w->mat[a], meff, rs, rmin[a], rhomax[a], wall};
-                double t = L->contact_time(&tp, v_imp, rayleigh);
+                double t = L->contact_time(&tp, v_imp, rayleigh, damped);
                 if (t < *tc) *tc = t;
             }
         }
@@ -58,5 +58,15 @@ dem_status dem_world_contact_time(const dem_world *wc, double impact_speed, doub
     dem_world *w = (dem_world *)wc; /* pair table is a cache */
     dem_status s = dem_pairs_update(w);
     if (s) return s;
-    return dem_contact_time_internal(w, impact_speed, 0, t_contact);
+    return dem_contact_time_internal(w, impact_speed, 0, 0, t_contact);
+}
+
+dem_status dem_world_contact_time_damped(const dem_world *wc, double impact_speed, double *t_contact)
+{
+    if (!wc) return DEM_ERR_ARG;
+    DEM_NEED(wc, t_contact, "contact_time_damped");
+    dem_world *w = (dem_world *)wc; /* pair table is a cache */
+    dem_status s = dem_pairs_update(w);
+    if (s) return s;
+    return dem_contact_time_internal(w, impact_speed, 0, 1, t_contact);
 }

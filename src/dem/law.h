@@ -40,8 +40,9 @@ typedef struct {
     void (*pair)(dem_pair *q, const dem_material *a, double ea, double ca, const dem_material *b,
                  double eb, double cb, int like, int ra, int rb);
     /* contact duration of a pair at impact speed v_imp (<= 0: none given);
-       rayleigh: also bound by the Rayleigh time where the law has one */
-    double (*contact_time)(const dem_time_pair *p, double v_imp, int rayleigh);
+       rayleigh: also bound by the Rayleigh time where the law has one;
+       damped: the duration with the pair's damping where the law knows it */
+    double (*contact_time)(const dem_time_pair *p, double v_imp, int rayleigh, int damped);
     /* all pairs of the neighbour list (one call per force evaluation) */
     void (*pair_forces)(dem_world *w, int periodic, double *max_overlap, size_t *contacts);
     dem_contact_fn contact;     /* one contact (walls) */

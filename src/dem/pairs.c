@@ -11,8 +11,8 @@
 #include <string.h>
 
 /* Combined parameters of one material pair (combination rules of dem.h). */
-static void pair_compute(int law, const dem_material *a, double ea, double ca, const dem_material *b,
-                         double eb, double cb, int like, dem_pair *q)
+static void pair_compute(int law, int pred, const dem_material *a, double ea, double ca,
+                         const dem_material *b, double eb, double cb, int like, dem_pair *q)
 {
     memset(q, 0, sizeof *q);
     /* a rigid body does not deform: the other one's elasticity alone */
@@ -23,6 +23,7 @@ static void pair_compute(int law, const dem_material *a, double ea, double ca, c
     /* two rigid bodies never touch (walls only): no elastic constants */
     if (ra && rb) return;
     q->mindlin = (2.0 - q->nu) / (2.0 * (1.0 - q->nu));
+    q->pred = pred ? 1.0 : 0.0;
     dem_laws[law]->pair(q, a, ea, ca, b, eb, cb, like, ra, rb);
 }
 
@@ -55,14 +56,14 @@ dem_status dem_pairs_update(dem_world *w)
     }
     for (int i = 0; i < nm; ++i)
         for (int j = 0; j < nm; ++j)
-            pair_compute(law, &w->mat[i], w->mat_e[i], w->mat_c[i], &w->mat[j], w->mat_e[j], w->mat_c[j],
+            pair_compute(law, w->cfg.damping_predicted, &w->mat[i], w->mat_e[i], w->mat_c[i], &w->mat[j], w->mat_e[j], w->mat_c[j],
                          i == j, &p[(size_t)i * (size_t)nm + (size_t)j]);
     for (int k = 0; k < w->novr; ++k) {
         const dem_pair_override *o = &w->ovr[k];
         if (o->a >= nm || o->b >= nm) continue;
         double e, c;
         L->derived(&o->m, &e, &c);
-        pair_compute(law, &o->m, e, c, &o->m, e, c, 1, &p[(size_t)o->a * (size_t)nm + (size_t)o->b]);
+        pair_compute(law, w->cfg.damping_predicted, &o->m, e, c, &o->m, e, c, 1, &p[(size_t)o->a * (size_t)nm + (size_t)o->b]);
         p[(size_t)o->b * (size_t)nm + (size_t)o->a] = p[(size_t)o->a * (size_t)nm + (size_t)o->b];
     }
     w->pairs_dirty = 0;

@@ -26,13 +26,12 @@ static void hm_rhs(double c6, double y, double v, double *a)
     *a = -yp * sqrt(yp) - c6 * sqrt(sqrt(yp)) * v;
 }
 
-double dem_hm_restitution(double cn)
+/* The dimensionless impact with damping c6 = c_n sqrt(6): e, and in *s_end
+ * the dimensionless duration (0: no rebound). */
+static double hm_impact(double c6, double *s_end)
 {
-    if (!(cn > 0)) return 1.0;
-    /* e = 0 (no rebound) from c_n ~ 1.3 on; above ~2.5e5 the explicit
-       integration below is unstable and returned garbage (e ~ 1e30) */
-    if (cn >= 1e3) return 0.0;
-    const double h = 1e-4, c6 = cn * sqrt(6.0);
+    const double h = 1e-4;
+    *s_end = 0.0;
     double y = 0.0, v = 1.0;
     for (long it = 0; it < 2000000; ++it) {
         double a1, a2, a3, a4;
@@ -58,12 +57,35 @@ double dem_hm_restitution(double cn)
             double s = 0.5 * (lo + hi);
             /* velocity: linear in the (smooth) velocity over the step */
             double vs = v + s * (vn - v);
+            *s_end = ((double)it + s) * h;
             return vs < 0 ? -vs : 0.0;
         }
         if (v <= 0 && vn >= 0 && yn > 0 && it > 0) return 0.0; /* stuck: no rebound */
         y = yn; v = vn;
     }
     return 0.0;
+}
+
+double dem_hm_restitution(double cn)
+{
+    if (!(cn > 0)) return 1.0;
+    /* e = 0 (no rebound) from c_n ~ 1.3 on; above ~2.5e5 the explicit
+       integration returned garbage (e ~ 1e30) */
+    if (cn >= 1e3) return 0.0;
+    double s;
+    return hm_impact(cn * sqrt(6.0), &s);
+}
+
+/* Damped / elastic contact duration of the same impact (the scaled ODE
+ * above with and without damping; it depends on c_n only). */
+double dem_hm_time_ratio(double cn)
+{
+    if (!(cn > 0)) return 1.0;
+    if (cn >= 1e3) return INFINITY;
+    double s0, s;
+    hm_impact(0.0, &s0);
+    hm_impact(cn * sqrt(6.0), &s);
+    return s > 0.0 ? s / s0 : INFINITY;
 }
 
 double dem_hm_damping(double e)

@@ -173,7 +173,7 @@ static dem_status step_contact_time(dem_world *w, double *tc, double *vimp)
     if (w->n) {
         int rayleigh = 1;
         if (w->cfg.impact_speed > 0) { *vimp = fmax(*vimp, w->cfg.impact_speed); rayleigh = 0; }
-        dem_contact_time_internal(w, *vimp, rayleigh, tc);
+        dem_contact_time_internal(w, *vimp, rayleigh, 0, tc);
     }
     return DEM_OK;
 }

@@ -111,6 +111,7 @@ static void config_copy(dem_config *dst, const dem_config *c)
     dst->max_overlap_ratio = c->max_overlap_ratio;
     dst->seed = c->seed;
     dst->spatial_sort = c->spatial_sort;
+    dst->damping_predicted = c->damping_predicted ? 1 : 0;
     dst->impact_speed = c->impact_speed;
 }
 _Static_assert(offsetof(dem_config, impact_speed) + sizeof(double) == sizeof(dem_config),
@@ -126,13 +127,14 @@ dem_status dem_world_configure(dem_world *w, const dem_config *c)
     dem_status st = dem_config_check(w, c);
     if (st) return st;
     if (w->n + w->ng > 0) {
-        int same = c->contact_law == w->cfg.contact_law && c->skin == w->cfg.skin;
+        int same = c->contact_law == w->cfg.contact_law && c->skin == w->cfg.skin &&
+                   (c->damping_predicted != 0) == (w->cfg.damping_predicted != 0);
         for (int k = 0; k < 3; ++k)
             same = same && c->domain_lo[k] == w->cfg.domain_lo[k] &&
                    c->domain_hi[k] == w->cfg.domain_hi[k] &&
                    (c->periodic[k] != 0) == (w->cfg.periodic[k] != 0);
         if (!same)
-            return DEM_FAIL(w, DEM_ERR_STATE, "contact_law, domain, periodic and skin cannot change "
+            return DEM_FAIL(w, DEM_ERR_STATE, "contact_law, damping_predicted, domain, periodic and skin cannot change "
                             "once particles exist (%zu particles); dt, gravity and limits can", w->n);
         double g[3] = {c->gravity[0], c->gravity[1], c->gravity[2]};
         w->cfg.dt = c->dt;

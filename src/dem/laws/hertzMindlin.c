@@ -41,10 +41,11 @@ static double rayleigh_time(double r, double rho, double E, double nu)
     return DEM_PI * r * sqrt(rho / G) / (0.1631 * nu + 0.8766);
 }
 
-static double contact_time(const dem_time_pair *p, double v_imp, int rayleigh)
+static double contact_time(const dem_time_pair *p, double v_imp, int rayleigh, int damped)
 {
     double t = INFINITY;
     if (v_imp > 0) t = dem_hertz_time(p->meff, p->rstar, p->q->estar, v_imp);
+    if (v_imp > 0 && damped) t *= dem_hm_time_ratio(p->q->cn);  /* same scaled ODE, c_n only */
     if (rayleigh || !(v_imp > 0))
         t = fmin(t, rayleigh_time(p->rmin, p->rhomax, p->a->youngs_modulus, p->a->poisson_ratio));
     return t;
@@ -69,6 +70,7 @@ static inline void hm_force(const dem_pair *q, double dt, const double n[3], dou
     double fcn = q->k43 * sq * delta;
     double dn = sqrt(meff * sq);
     double fn = fcn - q->cn8 * dn * vn;
+    if (q->pred > 0.0) fn = fcn - q->cn8 * dn * dem_predicted_vn(vn, fcn, q->cn8 * dn, meff, 0.5 * dt);
     ft[0] = ft[1] = ft[2] = 0.0;
     if (q->mu > 0.0) {
         dem_rotate_history(h, n);
@@ -139,6 +141,7 @@ typedef struct {
     double *g, *sc, *q4;
     double *wm2, *crol, *mur, *ai, *mi, *Ii, *wr0, *wr1, *wr2, *h0, *h1, *h2;
     double *F0, *F1, *F2, *Ti0, *Ti1, *Ti2, *Tj0, *Tj1, *Tj2;
+    double *me;
     const dem_pair **q;
     int *i;
 } hm_soa;
@@ -152,7 +155,7 @@ static void soa_map(hm_soa *b, void *mem, size_t cap)
                     &b->g, &b->sc, &b->q4, &b->wm2, &b->crol, &b->mur,
                     &b->ai, &b->mi, &b->Ii, &b->wr0, &b->wr1, &b->wr2,
                     &b->h0, &b->h1, &b->h2, &b->F0, &b->F1, &b->F2,
-                    &b->Ti0, &b->Ti1, &b->Ti2, &b->Tj0, &b->Tj1, &b->Tj2};
+                    &b->Ti0, &b->Ti1, &b->Ti2, &b->Tj0, &b->Tj1, &b->Tj2, &b->me};
     size_t nf = sizeof f / sizeof f[0];
     for (size_t a = 0; a < nf; ++a) { *f[a] = p; p += cap; }
     b->q = (const dem_pair **)p; p += cap;
@@ -160,10 +163,11 @@ static void soa_map(hm_soa *b, void *mem, size_t cap)
     b->k = b->j + cap;
     b->i = b->k + cap;
 }
-_Static_assert(43 * sizeof(double) + 3 * sizeof(int) <= DEM_SCRATCH_ENTRY, "scratch entry too small for the SoA buffers");
+_Static_assert(44 * sizeof(double) + 3 * sizeof(int) <= DEM_SCRATCH_ENTRY, "scratch entry too small for the SoA buffers");
 
 /* always inlined: each call site is specialised for periodic/uniform */
-static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, const int uniform, double *maxov,
+static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, const int uniform, const int pred,
+                                           double *maxov,
                                            size_t *ncont)
 {
     const double dt = w->hdt;
@@ -195,6 +199,8 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
            *restrict BF0 = B.F0, *restrict BF1 = B.F1, *restrict BF2 = B.F2,
            *restrict BTi0 = B.Ti0, *restrict BTi1 = B.Ti1, *restrict BTi2 = B.Ti2,
            *restrict BTj0 = B.Tj0, *restrict BTj1 = B.Tj1, *restrict BTj2 = B.Tj2;
+    double *restrict Bme = B.me;
+    const double hp = 0.5 * dt;    /* pred: the last half step */
     int *restrict Bj = B.j, *restrict Bk = B.k, *restrict Bi = B.i;
     double movr = *maxov;
     size_t nct = 0;
@@ -258,6 +264,7 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
             Bdelta[a] = delta;
             Bfcn[a] = k43 * sq * delta;
             Bdn[a] = sqrt(meff * sq);
+            if (pred) Bme[a] = meff;
             Bmeff[a] = (uniform ? u_mm : Bg[a]) * delta;                 /* delta_t,max = mu mindlin delta */
             Bidt[a] = (uniform ? u_imm : Bidt[a]) * (inv * r * s * msum); /* 1/delta_t,max (mu = 0: 0) */
             Bkt[a] = (uniform ? u_k43m : Bsc[a]) * sq;                    /* mu f_cn / delta_t,max */
@@ -340,7 +347,11 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
             const double ft0 = ce * h0 + cd * Bvt0[a];
             const double ft1 = ce * h1 + cd * Bvt1[a];
             const double ft2 = ce * h2 + cd * Bvt2[a];
-            const double fn = Bfcn[a] - (uniform ? u_cn8 : Bcn8[a]) * Bdn[a] * Bvn[a];
+            double fn = Bfcn[a] - (uniform ? u_cn8 : Bcn8[a]) * Bdn[a] * Bvn[a];
+            if (pred) {   /* damping at the predicted end-of-step velocity (dem_predicted_vn) */
+                const double C = (uniform ? u_cn8 : Bcn8[a]) * Bdn[a];
+                fn = Bfcn[a] - C * ((Bme[a] * Bvn[a] + hp * Bfcn[a]) / (Bme[a] + hp * C));
+            }
             BF0[a] = fn * n0 + ft0; BF1[a] = fn * n1 + ft1; BF2[a] = fn * n2 + ft2;
             const double c0 = n1 * ft2 - n2 * ft1, c1 = n2 * ft0 - n0 * ft2, c2 = n0 * ft1 - n1 * ft0;
             const double cr = Bcrol[a];
@@ -375,10 +386,13 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
 DEM_MULTIVERSION __attribute__((noinline))
 static void pair_loops_hm(dem_world *w, int per, double *movr, size_t *nct)
 {
-    if (w->nmat == 1) {
-        if (per) pair_loop_hm(w, 1, 1, movr, nct); else pair_loop_hm(w, 0, 1, movr, nct);
+    const int u = w->nmat == 1, pred = w->cfg.damping_predicted != 0;
+    if (!pred) {
+        if (u) { if (per) pair_loop_hm(w, 1, 1, 0, movr, nct); else pair_loop_hm(w, 0, 1, 0, movr, nct); }
+        else   { if (per) pair_loop_hm(w, 1, 0, 0, movr, nct); else pair_loop_hm(w, 0, 0, 0, movr, nct); }
     } else {
-        if (per) pair_loop_hm(w, 1, 0, movr, nct); else pair_loop_hm(w, 0, 0, movr, nct);
+        if (u) { if (per) pair_loop_hm(w, 1, 1, 1, movr, nct); else pair_loop_hm(w, 0, 1, 1, movr, nct); }
+        else   { if (per) pair_loop_hm(w, 1, 0, 1, movr, nct); else pair_loop_hm(w, 0, 0, 1, movr, nct); }
     }
 }
 

@@ -17,9 +17,9 @@ static void contact(const dem_pair *q, double dt, const double n[3], double delt
 
 /* with an impact speed: Hertz's duration, since k_n delta^(3/2)/sqrt(d)
  * acts as Hertz with (4/3) E* sqrt(R*) = k_n / sqrt(d); else the linear period */
-static double contact_time(const dem_time_pair *p, double v_imp, int rayleigh)
+static double contact_time(const dem_time_pair *p, double v_imp, int rayleigh, int damped)
 {
-    (void)rayleigh;
+    (void)rayleigh; (void)damped;  /* damping not included: Hertz's elastic duration */
     if (!(v_imp > 0)) return sd_linear_time(p);
     double d = 2.0 * p->rstar * (p->wall ? 1.0 : 2.0);
     double es = 0.75 * p->q->kn / sqrt(d * p->rstar);

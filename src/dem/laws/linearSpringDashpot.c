@@ -15,9 +15,9 @@ static void contact(const dem_pair *q, double dt, const double n[3], double delt
     sd_force(q, dt, n, delta, 1.0, vc, meff, h, F, ft, fel);
 }
 
-static double contact_time(const dem_time_pair *p, double v_imp, int rayleigh)
+static double contact_time(const dem_time_pair *p, double v_imp, int rayleigh, int damped)
 {
-    (void)v_imp; (void)rayleigh;
+    (void)v_imp; (void)rayleigh; (void)damped;  /* the damped half period either way */
     return sd_linear_time(p);
 }
 

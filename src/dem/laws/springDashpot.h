@@ -63,6 +63,7 @@ static inline void sd_force(const dem_pair *q, double dt, const double n[3], dou
     double etat = 0.5 * eta;  /* tangential damping: half the normal one (LAMMPS gran/hooke/history default) */
     double fel_ = fscale * q->kn * delta;
     double fn = fel_ - fscale * eta * vn;
+    if (q->pred > 0.0) fn = fel_ - fscale * eta * dem_predicted_vn(vn, fel_, fscale * eta, meff, 0.5 * dt);
     ft[0] = ft[1] = ft[2] = 0.0;
     if (q->mu > 0.0) {
         dem_rotate_history(h, n);
