@@ -56,6 +56,7 @@ typedef struct {
     /* common */
     double mu, mu_r, e;
     double nu;
+    double g8;           /* hertzMindlinNoSlip: 8 G*, 1/G* = (2-nu_i)/G_i + (2-nu_j)/G_j */
     double pred;         /* 1: damping at the predicted end-of-step velocity (dem_config.damping_predicted) */
 } dem_pair;
 

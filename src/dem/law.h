@@ -56,5 +56,6 @@ static inline const dem_law *dem_law_of(const dem_world *w) { return dem_laws[w-
 extern const dem_law dem_law_hertzMindlin;
 extern const dem_law dem_law_linearSpringDashpot;
 extern const dem_law dem_law_hertzSpringDashpot;
+extern const dem_law dem_law_hertzMindlinNoSlip;
 
 #endif

@@ -13,6 +13,7 @@ const dem_law *const dem_laws[DEM_CONTACT_LAW_COUNT] = {
     [DEM_CONTACT_HERTZ_MINDLIN] = &dem_law_hertzMindlin,
     [DEM_CONTACT_LINEAR_SPRING_DASHPOT] = &dem_law_linearSpringDashpot,
     [DEM_CONTACT_HERTZ_SPRING_DASHPOT] = &dem_law_hertzSpringDashpot,
+    [DEM_CONTACT_HERTZ_MINDLIN_NO_SLIP] = &dem_law_hertzMindlinNoSlip,
 };
 
 const char *dem_contact_law_name(dem_contact_law law)

@@ -73,6 +73,8 @@ typedef enum {
     DEM_CONTACT_HERTZ_MINDLIN = 0, /* [Z] Table 2: Hertz + Mindlin-Deresiewicz (delta_t,max), rolling friction */
     DEM_CONTACT_LINEAR_SPRING_DASHPOT, /* [S] 17-26, f = 1 */
     DEM_CONTACT_HERTZ_SPRING_DASHPOT,  /* [S] 17-26, f = sqrt(delta/d) */
+    DEM_CONTACT_HERTZ_MINDLIN_NO_SLIP, /* Hertz normal as hertzMindlin; incremental Mindlin no-slip
+                                          tangential spring k_t = 8 G* sqrt(R* delta), Coulomb limit */
     DEM_CONTACT_LAW_COUNT
 } dem_contact_law;
 
