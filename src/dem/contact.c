@@ -1,506 +1,19 @@
 /*---------------------------------------------------------------------------*\
-  demFoam DEM core - contact forces.
+  demFoam DEM core - contact forces: the pair loop of the selected law
+  (laws/, one call per evaluation) and the wall contacts.
   Copyright (C) 2026 the demFoam authors
   License: GPL-3.0-or-later (see LICENSE)
 
-  Convention (written once): for a pair (i, j) n = (x_i - x_j)/|x_i - x_j|
-  points from j to i, delta = a_i + a_j - |x_i - x_j|, the contact-point
-  velocity of i relative to j is
-      v_c = v_i - v_j - (a_i w_i + a_j w_j) x n,
-  v_n = (v_c . n), v_t = v_c - v_n n, and every force below acts on i
-  (j gets the opposite).  For a wall, j is the wall: n points from the
-  contact point to the centre, a_j = infinity, m_eff = m_i, R* = a_i.
-  This is the convention of [S] eqs. 17-26; [Z] Table 2 uses n from i to j
-  with forces on i, which flips the signs of n, v_n and delta_t together.
-
-  Laws (chosen once per call, never inside the pair loop):
-  - Hertz-Mindlin [Z] Table 2 (hm_force), rolling friction
-    M_r = -mu_r |f_cn| w_rel/|w_rel| limited so that it cannot reverse w_rel
-    within one step (a numerical regularisation; see docs/demCore.md).
-  - Linear / Hertzian spring-dashpot [S] 17-26 (sd_force).
-  Tangential history h: rotated into the current tangent plane (magnitude
-  kept), then h += v_t dt.
+  Convention: contactKernel.h.  Each law brings its own loop over the pairs
+  of the neighbour list (so the per-pair work has no indirect call); wall
+  contacts, far fewer, call the law's one-contact kernel through the table.
 \*---------------------------------------------------------------------------*/
-#include "dem_private.h"
-#include <math.h>
+#include "contactKernel.h"
 #include <string.h>
-
-static inline void rotate_history(double *h, const double n[3])
-{
-    double hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
-    if (hn != 0.0) {
-        double h2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-        h[0] -= hn * n[0]; h[1] -= hn * n[1]; h[2] -= hn * n[2];
-        double h2n = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-        /* rescale to the old length; skipped when the projection shortened
-           it by less than 5e-13 relative (quasi-static contacts: the normal
-           turns by ~1e-7 per step; the loss then stays below ~1e-6 over 1e6
-           steps of one contact) */
-        if (h2n > 0.0 && hn * hn > 1e-12 * h2n) {
-            double s = sqrt(h2 / (h2n + (h2n > 0.0 ? 0.0 : 1.0)));
-            h[0] *= s; h[1] *= s; h[2] *= s;
-        }
-    }
-}
-
-/* Hertz-Mindlin [Z] Table 2.  Returns the force on i in F, the elastic
- * normal force |f_cn| in *fel, tangential force in ft.  In terms of the
- * pair constants (no divisions by material data in the loop):
- *   f_cn  = (4/3) E* sqrt(R* delta) delta
- *   f_dn  = -c_n sqrt(8 E*) sqrt(m sqrt(R* delta)) v_n
- *   mu |f_cn| / delta_t,max = (4/3) E* sqrt(R* delta) / mindlin
- *   f_dt  = -c_t sqrt(8 E* / mindlin) sqrt(m sqrt(R* delta)) (1 - x)^(1/4) v_t,
- *           x = |delta_t| / delta_t,max                                   */
-static inline void hm_force(const dem_pair *q, double dt, const double n[3], double delta,
-                            const double vc[3], double meff, double rstar, double *h,
-                            double F[3], double ft[3], double *fel)
-{
-    double vn = vc[0] * n[0] + vc[1] * n[1] + vc[2] * n[2];
-    double vt[3] = {vc[0] - vn * n[0], vc[1] - vn * n[1], vc[2] - vn * n[2]};
-    double sq = sqrt(rstar * delta);
-    double fcn = q->k43 * sq * delta;
-    double dn = sqrt(meff * sq);
-    double fn = fcn - q->cn8 * dn * vn;
-    ft[0] = ft[1] = ft[2] = 0.0;
-    if (q->mu > 0.0) {
-        rotate_history(h, n);
-        h[0] += vt[0] * dt; h[1] += vt[1] * dt; h[2] += vt[2] * dt;
-        double dtmax = q->mumind * delta;                           /* delta_t,max */
-        double hm2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-        double kt = q->k43_mind * sq;                               /* mu |f_cn| / delta_t,max */
-        if (!(dtmax > 0.0)) {                                       /* delta rounded to 0 */
-            h[0] = h[1] = h[2] = 0.0;
-        } else if (hm2 >= dtmax * dtmax) {                          /* Coulomb sliding */
-            double s = dtmax / sqrt(hm2 + (hm2 > 0.0 ? 0.0 : 1.0));
-            h[0] *= s; h[1] *= s; h[2] *= s;
-            ft[0] = -kt * h[0]; ft[1] = -kt * h[1]; ft[2] = -kt * h[2];   /* -mu |f_cn| h/|h| */
-        } else {
-            double r = 1.0, c = 0.0;
-            if (hm2 > 0.0) {
-                double hm = sqrt(hm2), inv = 1.0 / ((hm + (hm > 0.0 ? 0.0 : 1.0)) * dtmax);
-                double x = hm * hm * inv;                           /* |h| / delta_t,max */
-                r = 1.0 - x;
-                r = 0.5 * (r + fabs(r));
-                double sr = sqrt(r);
-                /* mu f_cn (1 - r^(3/2)) / |h| = kt (1 - r^(3/2)) / x */
-                c = -kt * (1.0 - r * sr) * dtmax * dtmax * inv;
-                ft[0] = c * h[0]; ft[1] = c * h[1]; ft[2] = c * h[2];
-                r = sr;                                             /* (1 - x)^(1/2) */
-            }
-            double cd = -q->ct8 * dn * sqrt(r);                     /* (1 - x)^(1/4) */
-            ft[0] += cd * vt[0]; ft[1] += cd * vt[1]; ft[2] += cd * vt[2];
-        }
-    } else {
-        h[0] = h[1] = h[2] = 0.0;
-    }
-    F[0] = fn * n[0] + ft[0]; F[1] = fn * n[1] + ft[1]; F[2] = fn * n[2] + ft[2];
-    *fel = fcn;
-}
-
-/* Spring-dashpot [S] 17-26; fscale = 1 (linear) or sqrt(delta/d) (Hertzian). */
-static inline void sd_force(const dem_pair *q, double dt, const double n[3], double delta,
-                            double fscale, const double vc[3], double meff, double *h,
-                            double F[3], double ft[3], double *fel)
-{
-    double vn = vc[0] * n[0] + vc[1] * n[1] + vc[2] * n[2];
-    double vt[3] = {vc[0] - vn * n[0], vc[1] - vn * n[1], vc[2] - vn * n[2]};
-    double eta = q->eta_fixed >= 0.0 ? q->eta_fixed : q->beta * sqrt(q->kn * meff); /* gamma_n m_eff */
-    double etat = 0.5 * eta;  /* tangential damping: half the normal one (LAMMPS gran/hooke/history default) */
-    double fel_ = fscale * q->kn * delta;
-    double fn = fel_ - fscale * eta * vn;
-    ft[0] = ft[1] = ft[2] = 0.0;
-    if (q->mu > 0.0) {
-        rotate_history(h, n);
-        h[0] += vt[0] * dt; h[1] += vt[1] * dt; h[2] += vt[2] * dt;
-        for (int k = 0; k < 3; ++k) ft[k] = fscale * (-q->kt * h[k] - etat * vt[k]);
-        double ftm = sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
-        double lim = q->mu * fabs(fn);
-        if (ftm > lim) {
-            double s = lim / (ftm + (ftm > 0.0 ? 0.0 : 1.0));
-            double fs = fscale + (fscale > 0.0 ? 0.0 : 1.0), on = fscale > 0.0 ? 1.0 : 0.0;
-            for (int k = 0; k < 3; ++k) {
-                ft[k] *= s;
-                /* keep the spring consistent with the truncated force */
-                h[k] = on * -(ft[k] / fs + etat * vt[k]) / q->kt;
-            }
-        }
-    } else {
-        h[0] = h[1] = h[2] = 0.0;
-    }
-    F[0] = fn * n[0] + ft[0]; F[1] = fn * n[1] + ft[1]; F[2] = fn * n[2] + ft[2];
-    *fel = fel_;
-}
-
-/* Rolling friction torque on i (j gets the opposite): -mu_r |f_cn| w/|w|,
- * w = w_i - w_j, magnitude limited to |w| / (dt (1/I_i + 1/I_j)) so that it
- * cannot reverse w within a step.  Ii, Ij: moments of inertia (Ij = 0: wall). */
-static inline void rolling(double mu_r, double fel, const double *wi, const double *wj,
-                           double Ii, double Ij, double dt, double M[3])
-{
-    double wr[3] = {wi[0] - (wj ? wj[0] : 0), wi[1] - (wj ? wj[1] : 0), wi[2] - (wj ? wj[2] : 0)};
-    double wm2 = wr[0] * wr[0] + wr[1] * wr[1] + wr[2] * wr[2];
-    if (wm2 <= 0.0) { M[0] = M[1] = M[2] = 0.0; return; }
-    double wm = sqrt(wm2), m = mu_r * fel, c;
-    /* limit m <= wm Ii Ij / (dt (Ii + Ij)); wall (Ij -> inf): wm Ii / dt */
-    double num = Ij > 0 ? Ii * Ij : Ii, den = Ij > 0 ? dt * (Ii + Ij) : dt;
-    double inv = 1.0 / ((wm + (wm > 0.0 ? 0.0 : 1.0)) * (den + (den > 0.0 ? 0.0 : 1.0)));
-    if (m * den > wm * num) c = -num * wm * inv;
-    else c = -m * den * inv;
-    M[0] = c * wr[0]; M[1] = c * wr[1]; M[2] = c * wr[2];
-}
-
-/* The pair loop, specialised by law and periodicity at compile time. */
-#define LAW_HM 0
-#define LAW_LSD 1
-#define LAW_HSD 2
-static inline void pair_loop(dem_world *w, const int law, const int periodic,
-                             double *maxov, size_t *ncont)
-{
-    const double dt = w->hdt;
-    const int nm = w->nmat;
-    const dem_pair *pt = w->pair;
-    const double *x = w->x, *v = w->v, *om = w->w, *rad = w->rad, *mass = w->mass;
-    const int *mat = w->mat_of;
-    double *f = w->f, *t = w->t;
-    const int *off = w->nb_off, *nbj = w->nb_j;
-    const unsigned char *nbs = w->nb_s;
-    double *nbh = w->nb_h;
-    double movr = *maxov;
-    size_t nct = 0;
-    const size_t nrows = w->nrows;
-    for (size_t i = 0; i < nrows; ++i) {
-        const int k0 = off[i], k1 = off[i + 1];
-        if (k0 == k1) continue;
-        const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
-        const double ai = rad[i], mi = mass[i];
-        const double *wi = om + 3 * i, *vi = v + 3 * i;
-        const dem_pair *prow = pt + (size_t)mat[i] * nm;
-        double fi0 = 0, fi1 = 0, fi2 = 0, ti0 = 0, ti1 = 0, ti2 = 0;
-        for (int k = k0; k < k1; ++k) {
-            const size_t j = (size_t)nbj[k];
-            double d0 = xi0 - x[3 * j], d1 = xi1 - x[3 * j + 1], d2 = xi2 - x[3 * j + 2];
-            if (periodic) {
-                const double *sh = w->shift[nbs[k]];
-                d0 += sh[0]; d1 += sh[1]; d2 += sh[2];
-            }
-            const double aj = rad[j], s = ai + aj;
-            const double r2 = d0 * d0 + d1 * d1 + d2 * d2;
-            double *h = nbh + 3 * (size_t)k;
-            if (r2 >= s * s) {
-                if (h[0] != 0.0 || h[1] != 0.0 || h[2] != 0.0) h[0] = h[1] = h[2] = 0.0;
-                continue;
-            }
-            const double r = sqrt(r2), mj = mass[j], msum = mi + mj;
-            const double inv = 1.0 / ((r + (r > 0.0 ? 0.0 : 1.0)) * s * msum);  /* one division for 1/r, 1/s, 1/(mi+mj) */
-            const double ir = inv * s * msum;
-            const double n[3] = {d0 * ir, d1 * ir, d2 * ir};
-            const double delta = s - r;
-            nct++;
-            if (delta > movr * s) movr = delta / s;
-            const double meff = mi * mj * (inv * r * s);
-            const double rstar = ai * aj * (inv * r * msum);
-            const double *wj = om + 3 * j, *vj = v + 3 * j;
-            /* (a_i w_i + a_j w_j) x n */
-            const double W0 = ai * wi[0] + aj * wj[0], W1 = ai * wi[1] + aj * wj[1],
-                         W2 = ai * wi[2] + aj * wj[2];
-            const double vc[3] = {vi[0] - vj[0] - (W1 * n[2] - W2 * n[1]),
-                                  vi[1] - vj[1] - (W2 * n[0] - W0 * n[2]),
-                                  vi[2] - vj[2] - (W0 * n[1] - W1 * n[0])};
-            const dem_pair *q = prow + mat[j];
-            double F[3], ft[3], fel;
-            if (law == LAW_HM)
-                hm_force(q, dt, n, delta, vc, meff, rstar, h, F, ft, &fel);
-            else
-                sd_force(q, dt, n, delta, law == LAW_HSD ? sqrt(delta / s) : 1.0, vc, meff, h, F, ft, &fel);
-            fi0 += F[0]; fi1 += F[1]; fi2 += F[2];
-            f[3 * j] -= F[0]; f[3 * j + 1] -= F[1]; f[3 * j + 2] -= F[2];
-            /* torques: T_i = -a_i n x f_t, T_j = -a_j n x f_t */
-            const double c0 = n[1] * ft[2] - n[2] * ft[1], c1 = n[2] * ft[0] - n[0] * ft[2],
-                         c2 = n[0] * ft[1] - n[1] * ft[0];
-            ti0 -= ai * c0; ti1 -= ai * c1; ti2 -= ai * c2;
-            t[3 * j] -= aj * c0; t[3 * j + 1] -= aj * c1; t[3 * j + 2] -= aj * c2;
-            if (q->mu_r > 0.0) {
-                double M[3];
-                rolling(q->mu_r, fel, wi, wj, 0.4 * mi * ai * ai, 0.4 * mj * aj * aj, w->cfg.dt, M);
-                ti0 += M[0]; ti1 += M[1]; ti2 += M[2];
-                t[3 * j] -= M[0]; t[3 * j + 1] -= M[1]; t[3 * j + 2] -= M[2];
-            }
-        }
-        f[3 * i] += fi0; f[3 * i + 1] += fi1; f[3 * i + 2] += fi2;
-        t[3 * i] += ti0; t[3 * i + 1] += ti1; t[3 * i + 2] += ti2;
-    }
-    *maxov = movr;
-    *ncont = nct;
-}
-
-/* contacts processed per block in the phased Hertz-Mindlin loop */
-#define DEM_HM_BLOCK 64
-_Static_assert(DEM_SCRATCH_EXTRA >= DEM_HM_BLOCK, "scratch must hold a block plus the longest row");
-
-/* independent iterations (distinct SoA buffers): let GCC vectorise */
-#if defined(__GNUC__) && !defined(__clang__)
-#define DEM_IVDEP _Pragma("GCC ivdep")
-#else
-#define DEM_IVDEP
-#endif
-
-/* Hertz-Mindlin pair loop, phased per row.  The contacts of row i are
- * collected into structure-of-arrays buffers, then each phase runs over all
- * of them: gathers (positions, velocities, history) stay scalar, while the
- * arithmetic with square roots and divisions runs in branch-free loops the
- * compiler vectorises, so these long-latency operations overlap instead of
- * forming one dependent chain per contact.
- *
- * The [Z] tangential law is written branch-free.  With x = min(|h|/dtmax, 1),
- * r = 1 - x, sr = sqrt(r):
- *   sliding (x = 1): h is scaled to |h| = dtmax, f_t = -mu f_cn h/|h|;
- *   else             f_t = -mu f_cn (1 - r^(3/2)) h/|h| - c_t (...)(1-x)^(1/4) v_t.
- * Both are f_t = -kt g sc h - c_t sqrt(8 E* / mindlin) dn sqrt(sr) v_t with
- *   kt = mu f_cn / dtmax, g = (1 - r^(3/2))/x = (1 + sr + r)/(1 + sr),
- *   sc = min(1, dtmax/|h|),
- * since at x = 1: g = 1, sr = 0 (no damping while sliding, as in [Z]). */
-typedef struct {
-    int *j, *k;
-    double *d0, *d1, *d2, *s, *mj, *aj;
-    double *delta, *dn, *fcn, *meff, *idt;
-    double *vn, *vt0, *vt1, *vt2, *kt, *ct8, *cn8;
-    double *g, *sc, *q4;
-    double *wm2, *crol, *mur, *ai, *mi, *Ii, *wr0, *wr1, *wr2, *h0, *h1, *h2;
-    double *F0, *F1, *F2, *Ti0, *Ti1, *Ti2, *Tj0, *Tj1, *Tj2;
-    const dem_pair **q;
-    int *i;
-} hm_soa;
-
-static void soa_map(hm_soa *b, void *mem, size_t cap)
-{
-    double *p = (double *)mem;
-    double **f[] = {&b->d0, &b->d1, &b->d2, &b->s, &b->mj, &b->aj,
-                    &b->delta, &b->dn, &b->fcn, &b->meff, &b->idt,
-                    &b->vn, &b->vt0, &b->vt1, &b->vt2, &b->kt, &b->ct8, &b->cn8,
-                    &b->g, &b->sc, &b->q4, &b->wm2, &b->crol, &b->mur,
-                    &b->ai, &b->mi, &b->Ii, &b->wr0, &b->wr1, &b->wr2,
-                    &b->h0, &b->h1, &b->h2, &b->F0, &b->F1, &b->F2,
-                    &b->Ti0, &b->Ti1, &b->Ti2, &b->Tj0, &b->Tj1, &b->Tj2};
-    size_t nf = sizeof f / sizeof f[0];
-    for (size_t a = 0; a < nf; ++a) { *f[a] = p; p += cap; }
-    b->q = (const dem_pair **)p; p += cap;
-    b->j = (int *)p;
-    b->k = b->j + cap;
-    b->i = b->k + cap;
-}
-_Static_assert(43 * sizeof(double) + 3 * sizeof(int) <= DEM_SCRATCH_ENTRY, "scratch entry too small for the SoA buffers");
-
-#if defined(__GNUC__)
-#define DEM_ALWAYS_INLINE __attribute__((always_inline)) inline
-#else
-#define DEM_ALWAYS_INLINE inline
-#endif
-/* always inlined: each call site is specialised for periodic/uniform */
-static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, const int uniform, double *maxov,
-                                           size_t *ncont)
-{
-    const double dt = w->hdt;
-    const int nm = w->nmat;
-    const dem_pair *pt = w->pair;
-    const double *x = w->x, *v = w->v, *om = w->w, *rad = w->rad, *mass = w->mass;
-    const int *mat = w->mat_of;
-    double *f = w->f, *t = w->t;
-    const int *off = w->nb_off, *nbj = w->nb_j;
-    const unsigned char *nbs = w->nb_s;
-    double *nbh = w->nb_h;
-    const double dtl = w->cfg.dt;  /* step of the rolling-torque limiter */
-    /* uniform (one material): the pair constants are loop invariants instead of per-contact copies */
-    const dem_pair *q0 = pt;
-    const double u_cn8 = q0->cn8, u_ct8 = q0->mu > 0.0 ? q0->ct8 : 0.0, u_k43 = q0->k43,
-                 u_k43m = q0->k43_mind, u_imm = q0->imumind, u_mm = q0->mumind, u_mur = q0->mu_r;
-    hm_soa B;
-    soa_map(&B, w->scratch, w->capscratch);
-    double *restrict Bd0 = B.d0, *restrict Bd1 = B.d1, *restrict Bd2 = B.d2,
-           *restrict Bs = B.s, *restrict Bmj = B.mj, *restrict Baj = B.aj,
-           *restrict Bdelta = B.delta, *restrict Bdn = B.dn, *restrict Bfcn = B.fcn,
-           *restrict Bmeff = B.meff, *restrict Bidt = B.idt, *restrict Bvn = B.vn, *restrict Bvt0 = B.vt0,
-           *restrict Bvt1 = B.vt1, *restrict Bvt2 = B.vt2, *restrict Bkt = B.kt,
-           *restrict Bct8 = B.ct8, *restrict Bcn8 = B.cn8, *restrict Bg = B.g, *restrict Bsc = B.sc,
-           *restrict Bq4 = B.q4, *restrict Bwm2 = B.wm2, *restrict Bcrol = B.crol, *restrict Bmur = B.mur,
-           *restrict Bai = B.ai, *restrict Bmi = B.mi, *restrict BIi = B.Ii,
-           *restrict Bwr0 = B.wr0, *restrict Bwr1 = B.wr1, *restrict Bwr2 = B.wr2,
-           *restrict Bh0 = B.h0, *restrict Bh1 = B.h1, *restrict Bh2 = B.h2,
-           *restrict BF0 = B.F0, *restrict BF1 = B.F1, *restrict BF2 = B.F2,
-           *restrict BTi0 = B.Ti0, *restrict BTi1 = B.Ti1, *restrict BTi2 = B.Ti2,
-           *restrict BTj0 = B.Tj0, *restrict BTj1 = B.Tj1, *restrict BTj2 = B.Tj2;
-    int *restrict Bj = B.j, *restrict Bk = B.k, *restrict Bi = B.i;
-    double movr = *maxov;
-    size_t nct = 0;
-    const size_t nrows = w->nrows;
-    int nc = 0;
-    for (size_t i = 0; i <= nrows; ++i) {
-        if (i < nrows) {
-            const int k0 = off[i], k1 = off[i + 1];
-            if (k0 == k1) continue;
-            const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
-            const double ai = rad[i], mi = mass[i], Ii = 0.4 * mi * ai * ai;
-            const dem_pair *prow = pt + (size_t)mat[i] * nm;
-            /* phase 1 (gather): which entries touch; appended to the block */
-            for (int k = k0; k < k1; ++k) {
-                const int j = nbj[k];
-                double d0 = xi0 - x[3 * j], d1 = xi1 - x[3 * j + 1], d2 = xi2 - x[3 * j + 2];
-                if (periodic) {
-                    const double *sh = w->shift[nbs[k]];
-                    d0 += sh[0]; d1 += sh[1]; d2 += sh[2];
-                }
-                const double aj = rad[j], s = ai + aj;
-                const double r2 = d0 * d0 + d1 * d1 + d2 * d2;
-                const int touch = r2 < s * s;
-                {   /* branch-free: a non-touching entry loses its history and is overwritten next */
-                    double *h = nbh + 3 * (size_t)k;
-                    const double keep = touch ? 1.0 : 0.0;
-                    h[0] *= keep; h[1] *= keep; h[2] *= keep;
-                }
-                const double mj = mass[j];
-                const dem_pair *q = prow + mat[j];
-                Bd0[nc] = d0; Bd1[nc] = d1; Bd2[nc] = d2; Bs[nc] = s;
-                Bmj[nc] = mj; Baj[nc] = aj;
-                if (!uniform) {
-                    Bcn8[nc] = q->cn8; Bct8[nc] = q->mu > 0.0 ? q->ct8 : 0.0;
-                    Bkt[nc] = q->k43; Bsc[nc] = q->k43_mind; Bidt[nc] = q->imumind; Bg[nc] = q->mumind;
-                    Bmur[nc] = q->mu_r;
-                }
-                Bj[nc] = j; Bk[nc] = k;
-                Bai[nc] = ai; Bmi[nc] = mi; BIi[nc] = Ii; Bi[nc] = (int)i;
-                nc += touch;
-            }
-            if (nc < DEM_HM_BLOCK) continue;  /* rows are never split: buffer >= block + longest row */
-        }
-        if (nc == 0) continue;
-        nct += (size_t)nc;
-        /* phase 2 (vector): geometry, normal force */
-        DEM_IVDEP
-        for (int a = 0; a < nc; ++a) {
-            const double r0 = sqrt(Bd0[a] * Bd0[a] + Bd1[a] * Bd1[a] + Bd2[a] * Bd2[a]);
-            const double s = Bs[a], msum = Bmi[a] + Bmj[a];
-            const double r = r0 + (r0 > 0.0 ? 0.0 : s);  /* coincident centres: treated as delta = 0 */
-            const double delta = s - r;            /* may round to 0 although r2 < s^2 */
-            const double ds = delta + (delta > 0.0 ? 0.0 : s);  /* no select around the division */
-            const double inv = 1.0 / (r * s * msum * ds);  /* 1/r, 1/s, 1/(mi+mj), 1/delta */
-            const double ir = inv * s * msum * ds;
-            Bd0[a] *= ir; Bd1[a] *= ir; Bd2[a] *= ir;
-            const double meff = Bmi[a] * Bmj[a] * (inv * r * s * ds);
-            const double rstar = Bai[a] * Baj[a] * (inv * r * msum * ds);
-            const double sq = sqrt(rstar * delta);
-            const double k43 = uniform ? u_k43 : Bkt[a];
-            Bdelta[a] = delta;
-            Bfcn[a] = k43 * sq * delta;
-            Bdn[a] = sqrt(meff * sq);
-            Bmeff[a] = (uniform ? u_mm : Bg[a]) * delta;                 /* delta_t,max = mu mindlin delta */
-            Bidt[a] = (uniform ? u_imm : Bidt[a]) * (inv * r * s * msum); /* 1/delta_t,max (mu = 0: 0) */
-            Bkt[a] = (uniform ? u_k43m : Bsc[a]) * sq;                    /* mu f_cn / delta_t,max */
-        }
-        for (int a = 0; a < nc; ++a) {
-            const double ov = Bdelta[a];
-            if (ov > movr * Bs[a]) movr = ov / Bs[a];
-        }
-        /* phase 3 (gather): relative velocity, history and relative spin into the buffers */
-        for (int a = 0; a < nc; ++a) {
-            const int j = Bj[a], ii = Bi[a];
-            const double aj = Baj[a], ai = Bai[a];
-            const double *wj = om + 3 * j, *vj = v + 3 * j, *wi = om + 3 * ii, *vi = v + 3 * ii;
-            const double n[3] = {Bd0[a], Bd1[a], Bd2[a]};
-            const double W0 = ai * wi[0] + aj * wj[0], W1 = ai * wi[1] + aj * wj[1],
-                         W2 = ai * wi[2] + aj * wj[2];
-            const double vc0 = vi[0] - vj[0] - (W1 * n[2] - W2 * n[1]);
-            const double vc1 = vi[1] - vj[1] - (W2 * n[0] - W0 * n[2]);
-            const double vc2 = vi[2] - vj[2] - (W0 * n[1] - W1 * n[0]);
-            const double vn = vc0 * n[0] + vc1 * n[1] + vc2 * n[2];
-            Bvn[a] = vn; Bvt0[a] = vc0 - vn * n[0]; Bvt1[a] = vc1 - vn * n[1]; Bvt2[a] = vc2 - vn * n[2];
-            const double *h = nbh + 3 * (size_t)Bk[a];
-            Bh0[a] = h[0]; Bh1[a] = h[1]; Bh2[a] = h[2];
-            const double wr0 = wi[0] - wj[0], wr1 = wi[1] - wj[1], wr2 = wi[2] - wj[2];
-            Bwm2[a] = wr0 * wr0 + wr1 * wr1 + wr2 * wr2;
-            Bwr0[a] = wr0; Bwr1[a] = wr1; Bwr2[a] = wr2;
-        }
-        /* phase 4 (vector): tangential law factors, rolling factor */
-        DEM_IVDEP
-        for (int a = 0; a < nc; ++a) {
-            /* history: rotate_history and h += v_t dt, branch-free (the same
-               operations where rotate_history does them; selects elsewhere) */
-            const double n0 = Bd0[a], n1 = Bd1[a], n2 = Bd2[a];
-            double h0 = Bh0[a], h1 = Bh1[a], h2 = Bh2[a];
-            const double hn = h0 * n0 + h1 * n1 + h2 * n2;
-            const double hh = h0 * h0 + h1 * h1 + h2 * h2;
-            double p0 = h0 - hn * n0, p1 = h1 - hn * n1, p2 = h2 - hn * n2;
-            const double h2n = p0 * p0 + p1 * p1 + p2 * p2;
-            const int resc = hn != 0.0 && h2n > 0.0 && hn * hn > 1e-12 * h2n;
-            /* arithmetic guard (no select feeding the division): where resc
-               is false the quotient is ~1 or hh / 1, never an overflow */
-            const double sres = sqrt(hh / (h2n + (h2n > 0.0 ? 0.0 : 1.0)));
-            p0 = resc ? p0 * sres : p0; p1 = resc ? p1 * sres : p1; p2 = resc ? p2 * sres : p2;
-            h0 = hn != 0.0 ? p0 : h0; h1 = hn != 0.0 ? p1 : h1; h2 = hn != 0.0 ? p2 : h2;
-            h0 += Bvt0[a] * dt; h1 += Bvt1[a] * dt; h2 += Bvt2[a] * dt;
-            const int fric = Bidt[a] > 0.0;        /* mu = 0: no tangential spring */
-            h0 = fric ? h0 : 0.0; h1 = fric ? h1 : 0.0; h2 = fric ? h2 : 0.0;
-            Bh0[a] = h0; Bh1[a] = h1; Bh2[a] = h2;
-            /* clamps and guards are arithmetic (no select feeding sqrt or a
-               division), so no floating-point exception can be raised even
-               where the compiler evaluates both sides of a select */
-            const double hm = sqrt(h0 * h0 + h1 * h1 + h2 * h2);
-            const double r1 = 1.0 - hm * Bidt[a];
-            const double r = 0.5 * (r1 + fabs(r1));              /* max(1 - x, 0) */
-            const double sr = sqrt(r);
-            const double hmsafe = hm + (hm > 0.0 ? 0.0 : 1.0);
-            const double inv = 1.0 / (hmsafe * (1.0 + sr));
-            const double dtmax_over_hm = Bmeff[a] * (1.0 + sr) * inv;  /* dtmax / |h| */
-            Bsc[a] = dtmax_over_hm < 1.0 ? dtmax_over_hm : 1.0;
-            Bg[a] = (1.0 + sr + r) * hmsafe * inv;
-            Bq4[a] = sqrt(sr);
-            /* rolling: c = -min(mu_r f_cn / wm, Ii Ij / (dt (Ii + Ij))) */
-            const double wm = sqrt(Bwm2[a]);
-            const double wmsafe = wm + (wm > 0.0 ? 0.0 : 1.0);
-            const double Ii = BIi[a], Ij = 0.4 * Bmj[a] * Baj[a] * Baj[a], den = dtl * (Ii + Ij);
-            const double inv2 = 1.0 / (wmsafe * den);
-            const double c1 = (uniform ? u_mur : Bmur[a]) * Bfcn[a] * den * inv2, c2 = Ii * Ij * wmsafe * inv2;
-            Bcrol[a] = wm > 0.0 ? -(c1 < c2 ? c1 : c2) : 0.0;
-        }
-        /* phase 5 (vector): history limit, forces and torques */
-        DEM_IVDEP
-        for (int a = 0; a < nc; ++a) {
-            const double aj = Baj[a], ai = Bai[a];
-            const double n0 = Bd0[a], n1 = Bd1[a], n2 = Bd2[a];
-            const double sc = Bsc[a];
-            const double h0 = sc < 1.0 ? Bh0[a] * sc : Bh0[a], h1 = sc < 1.0 ? Bh1[a] * sc : Bh1[a],
-                         h2 = sc < 1.0 ? Bh2[a] * sc : Bh2[a];
-            Bh0[a] = h0; Bh1[a] = h1; Bh2[a] = h2;
-            const double ce = -Bkt[a] * Bg[a], cd = -(uniform ? u_ct8 : Bct8[a]) * Bdn[a] * Bq4[a];
-            const double ft0 = ce * h0 + cd * Bvt0[a];
-            const double ft1 = ce * h1 + cd * Bvt1[a];
-            const double ft2 = ce * h2 + cd * Bvt2[a];
-            const double fn = Bfcn[a] - (uniform ? u_cn8 : Bcn8[a]) * Bdn[a] * Bvn[a];
-            BF0[a] = fn * n0 + ft0; BF1[a] = fn * n1 + ft1; BF2[a] = fn * n2 + ft2;
-            const double c0 = n1 * ft2 - n2 * ft1, c1 = n2 * ft0 - n0 * ft2, c2 = n0 * ft1 - n1 * ft0;
-            const double cr = Bcrol[a];
-            const double M0 = cr * Bwr0[a], M1 = cr * Bwr1[a], M2 = cr * Bwr2[a];
-            BTi0[a] = M0 - ai * c0; BTi1[a] = M1 - ai * c1; BTi2[a] = M2 - ai * c2;
-            BTj0[a] = aj * c0 + M0; BTj1[a] = aj * c1 + M1; BTj2[a] = aj * c2 + M2;
-        }
-        /* phase 6 (scatter): history, forces and torques */
-        for (int a = 0; a < nc; ++a) {
-            const int j = Bj[a], ii = Bi[a];
-            double *h = nbh + 3 * (size_t)Bk[a];
-            h[0] = Bh0[a]; h[1] = Bh1[a]; h[2] = Bh2[a];
-            const double F0 = BF0[a], F1 = BF1[a], F2 = BF2[a];
-            f[3 * ii] += F0; f[3 * ii + 1] += F1; f[3 * ii + 2] += F2;
-            f[3 * j] -= F0; f[3 * j + 1] -= F1; f[3 * j + 2] -= F2;
-            t[3 * ii] += BTi0[a]; t[3 * ii + 1] += BTi1[a]; t[3 * ii + 2] += BTi2[a];
-            t[3 * j] -= BTj0[a]; t[3 * j + 1] -= BTj1[a]; t[3 * j + 2] -= BTj2[a];
-        }
-        nc = 0;
-    }
-    *maxov = movr;
-    *ncont = nct;
-}
 
 /* One wall contact of particle i with unit normal n (wall -> centre),
  * overlap delta, wall velocity vw. */
-static inline void wall_contact(dem_world *w, int law, size_t i, const double n[3], double delta,
+static inline void wall_contact(dem_world *w, dem_contact_fn one, size_t i, const double n[3], double delta,
                                 const double vw[3], int wallmat, double *h)
 {
     const double ai = w->rad[i], mi = w->mass[i];
@@ -511,11 +24,7 @@ static inline void wall_contact(dem_world *w, int law, size_t i, const double n[
     const double vc[3] = {vi[0] - vw[0] - cr[0], vi[1] - vw[1] - cr[1], vi[2] - vw[2] - cr[2]};
     const dem_pair *q = &w->pair[(size_t)w->mat_of[i] * w->nmat + wallmat];
     double F[3], ft[3], fel;
-    if (law == LAW_HM)
-        hm_force(q, w->hdt, n, delta, vc, mi, ai, h, F, ft, &fel);
-    else
-        sd_force(q, w->hdt, n, delta, law == LAW_HSD ? sqrt(delta / (2.0 * ai)) : 1.0, vc, mi, h,
-                 F, ft, &fel);
+    one(q, w->hdt, n, delta, 2.0 * ai, vc, mi, ai, h, F, ft, &fel);
     double c[3];
     dem_cross(n, ft, c);
     for (int k = 0; k < 3; ++k) {
@@ -524,7 +33,7 @@ static inline void wall_contact(dem_world *w, int law, size_t i, const double n[
     }
     if (q->mu_r > 0.0) {
         double M[3];
-        rolling(q->mu_r, fel, wi, NULL, 0.4 * mi * ai * ai, 0.0, w->cfg.dt, M);
+        dem_rolling(q->mu_r, fel, wi, NULL, 0.4 * mi * ai * ai, 0.0, w->cfg.dt, M);
         for (int k = 0; k < 3; ++k) w->t[3 * i + k] += M[k];
     }
     w->wall_contacts++;
@@ -533,7 +42,7 @@ static inline void wall_contact(dem_world *w, int law, size_t i, const double n[
 
 typedef struct { int k; int feature; int nv; int fv[3]; double d2, cp[3]; int acc; } mesh_cand;
 
-static void wall_loop(dem_world *w, int law)
+static void wall_loop(dem_world *w, dem_contact_fn one)
 {
     const int *off = w->wc_off;
     for (size_t i = 0; i < w->n; ++i) {
@@ -552,7 +61,7 @@ static void wall_loop(dem_world *w, int law)
                 for (int c = 0; c < 3; ++c)
                     d += (xi[c] - P->x0[c] - P->vel[c] * (w->time - P->t0)) * P->n[c];
                 if (d >= ai || d <= -ai) { h[0] = h[1] = h[2] = 0.0; continue; }
-                wall_contact(w, law, i, P->n, ai - d, P->vel, P->material, h);
+                wall_contact(w, one, i, P->n, ai - d, P->vel, P->material, h);
             } else {
                 const dem_mesh *m = &w->meshes[w->wall_index[wall]];
                 int t = w->wc_tri[k];
@@ -635,25 +144,8 @@ static void wall_loop(dem_world *w, int law)
                 const double *tn = m->nrm + 3 * w->wc_tri[k];
                 for (int c = 0; c < 3; ++c) n[c] = tn[c];
             }
-            wall_contact(w, law, i, n, ai - d, m->vel, m->material, h);
+            wall_contact(w, one, i, n, ai - d, m->vel, m->material, h);
         }
-    }
-}
-
-/* The Hertz-Mindlin pair loops, compiled more than once where the compiler
- * supports function multiversioning: a generic x86-64 (SSE2) version and
- * versions for AVX2 and AVX-512 (wider vectors, more registers), chosen once
- * at load time from the CPU (ifunc).  All do the same IEEE operations in the
- * same order (no FMA: -std=c11 keeps -ffp-contract=off), so the results are
- * bit-identical on any x86-64; -DDEM_NO_MULTIVERSION builds the generic one only
- * (DEM_MULTIVERSION, dem_private.h). */
-DEM_MULTIVERSION __attribute__((noinline))
-static void pair_loops_hm(dem_world *w, int per, double *movr, size_t *nct)
-{
-    if (w->nmat == 1) {
-        if (per) pair_loop_hm(w, 1, 1, movr, nct); else pair_loop_hm(w, 0, 1, movr, nct);
-    } else {
-        if (per) pair_loop_hm(w, 1, 0, movr, nct); else pair_loop_hm(w, 0, 0, movr, nct);
     }
 }
 
@@ -668,24 +160,11 @@ void dem_forces(dem_world *w, double hist_dt)
     double movr = 0.0;
     size_t nct = 0;
     int per = w->cfg.periodic[0] || w->cfg.periodic[1] || w->cfg.periodic[2];
-    switch (w->cfg.contact_law) {
-    case DEM_CONTACT_HERTZ_MINDLIN:
-        pair_loops_hm(w, per, &movr, &nct);
-        break;
-    case DEM_CONTACT_LINEAR_SPRING_DASHPOT:
-        if (per) pair_loop(w, LAW_LSD, 1, &movr, &nct); else pair_loop(w, LAW_LSD, 0, &movr, &nct);
-        break;
-    default:
-        if (per) pair_loop(w, LAW_HSD, 1, &movr, &nct); else pair_loop(w, LAW_HSD, 0, &movr, &nct);
-        break;
-    }
+    const dem_law *law = dem_law_of(w);
+    law->pair_forces(w, per, &movr, &nct);   /* the law's own loop over all pairs */
     w->pair_contacts = nct;
     w->max_overlap = movr;
     w->wall_contacts = 0;
-    if (w->nwalls) {
-        int law = w->cfg.contact_law == DEM_CONTACT_HERTZ_MINDLIN ? LAW_HM
-                : (w->cfg.contact_law == DEM_CONTACT_LINEAR_SPRING_DASHPOT ? LAW_LSD : LAW_HSD);
-        wall_loop(w, law);
-    }
+    if (w->nwalls) wall_loop(w, law->contact);
     w->forces_valid = 1;
 }

@@ -56,6 +56,8 @@ typedef struct {
     /* common */
     double mu, mu_r, e;
     double nu;
+    double g8;           /* hertzMindlinNoSlip: 8 G*, 1/G* = (2-nu_i)/G_i + (2-nu_j)/G_j */
+    double pred;         /* 1: damping at the predicted end-of-step velocity (dem_config.damping_predicted) */
 } dem_pair;
 
 typedef struct { int a, b; dem_material m; } dem_pair_override;
@@ -231,7 +233,7 @@ dem_status dem_pairs_update(dem_world *w);
 dem_status dem_ext_alloc(dem_world *w);
 dem_status dem_list_build(dem_world *w);
 dem_status dem_scratch_ensure(dem_world *w);
-#define DEM_SCRATCH_ENTRY 360 /* bytes per contact of the phased loop buffer */
+#define DEM_SCRATCH_ENTRY 368 /* bytes per contact of the phased loop buffer */
 #define DEM_SCRATCH_EXTRA 80  /* entries beyond the longest row (block of the phased loop) */
 void       dem_forces(dem_world *w, double hist_dt);
 dem_status dem_append_particle(dem_world *w, const dem_particle *p);
@@ -250,7 +252,7 @@ dem_status dem_outlets_run(dem_world *w);
 void       dem_wall_position(const dem_world *w, int wall, double time, double off[3]);
 int        dem_closest_on_triangle(const double *p, const double *a, const double *b,
                                    const double *c, double q[3]);
-dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayleigh, double *tc);
+dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayleigh, int damped, double *tc);
 double     dem_hertz_time(double meff, double rstar, double estar, double v);
 dem_status dem_remove_booked(dem_world *w, size_t i, int outlet);
 dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const char *fn);
@@ -258,6 +260,7 @@ dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const char *fn);
 /* restitution <-> damping mappings (restitution.c) */
 double dem_hm_restitution(double cn);          /* e(c_n), Hertz-Mindlin of [Z] */
 double dem_hm_damping(double e);               /* inverse */
+double dem_hm_time_ratio(double cn);           /* damped / elastic contact duration, Hertz-Mindlin */
 double dem_lsd_beta(double e);                 /* eta = beta sqrt(k m) */
 
 /* rng */

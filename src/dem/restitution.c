@@ -1,6 +1,6 @@
 /*---------------------------------------------------------------------------*\
-  demFoam DEM core - restitution <-> damping mappings and the random number
-  generator.
+  demFoam DEM core - restitution <-> damping mappings of the contact laws
+  and the Hertz contact duration.
   Copyright (C) 2026 the demFoam authors
   License: GPL-3.0-or-later (see LICENSE)
 
@@ -26,13 +26,12 @@ static void hm_rhs(double c6, double y, double v, double *a)
     *a = -yp * sqrt(yp) - c6 * sqrt(sqrt(yp)) * v;
 }
 
-double dem_hm_restitution(double cn)
+/* The dimensionless impact with damping c6 = c_n sqrt(6): e, and in *s_end
+ * the dimensionless duration (0: no rebound). */
+static double hm_impact(double c6, double *s_end)
 {
-    if (!(cn > 0)) return 1.0;
-    /* e = 0 (no rebound) from c_n ~ 1.3 on; above ~2.5e5 the explicit
-       integration below is unstable and returned garbage (e ~ 1e30) */
-    if (cn >= 1e3) return 0.0;
-    const double h = 1e-4, c6 = cn * sqrt(6.0);
+    const double h = 1e-4;
+    *s_end = 0.0;
     double y = 0.0, v = 1.0;
     for (long it = 0; it < 2000000; ++it) {
         double a1, a2, a3, a4;
@@ -58,12 +57,35 @@ double dem_hm_restitution(double cn)
             double s = 0.5 * (lo + hi);
             /* velocity: linear in the (smooth) velocity over the step */
             double vs = v + s * (vn - v);
+            *s_end = ((double)it + s) * h;
             return vs < 0 ? -vs : 0.0;
         }
         if (v <= 0 && vn >= 0 && yn > 0 && it > 0) return 0.0; /* stuck: no rebound */
         y = yn; v = vn;
     }
     return 0.0;
+}
+
+double dem_hm_restitution(double cn)
+{
+    if (!(cn > 0)) return 1.0;
+    /* e = 0 (no rebound) from c_n ~ 1.3 on; above ~2.5e5 the explicit
+       integration returned garbage (e ~ 1e30) */
+    if (cn >= 1e3) return 0.0;
+    double s;
+    return hm_impact(cn * sqrt(6.0), &s);
+}
+
+/* Damped / elastic contact duration of the same impact (the scaled ODE
+ * above with and without damping; it depends on c_n only). */
+double dem_hm_time_ratio(double cn)
+{
+    if (!(cn > 0)) return 1.0;
+    if (cn >= 1e3) return INFINITY;
+    double s0, s;
+    hm_impact(0.0, &s0);
+    hm_impact(cn * sqrt(6.0), &s);
+    return s > 0.0 ? s / s0 : INFINITY;
 }
 
 double dem_hm_damping(double e)
@@ -85,53 +107,12 @@ double dem_lsd_beta(double e)
     return 2.0 * L / sqrt(DEM_PI * DEM_PI + L * L);
 }
 
-/*--- xoshiro256** (Blackman & Vigna, 2018), seeded by splitmix64 ----------------*/
-static uint64_t splitmix64(uint64_t *s)
+/* Elastic Hertz contact duration t_c = 2 * (2/5) B(2/5,1/2) * delta_max / v,
+ * delta_max = (15 m v^2 / (16 E* sqrt(R)))^(2/5) (Hertz theory; e.g. Johnson,
+ * Contact Mechanics, 1985, sec. 11.4). */
+double dem_hertz_time(double meff, double rstar, double estar, double v)
 {
-    uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-void dem_rng_seed(dem_world *w, uint64_t seed)
-{
-    uint64_t s = seed;
-    for (int k = 0; k < 4; ++k) w->rng[k] = splitmix64(&s);
-}
-
-static inline uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-
-uint64_t dem_rng_next(dem_world *w)
-{
-    uint64_t *s = w->rng;
-    uint64_t r = rotl(s[1] * 5, 7) * 9, t = s[1] << 17;
-    s[2] ^= s[0]; s[3] ^= s[1]; s[1] ^= s[2]; s[0] ^= s[3];
-    s[2] ^= t; s[3] = rotl(s[3], 45);
-    return r;
-}
-
-double dem_rng_uniform(dem_world *w) { return (double)(dem_rng_next(w) >> 11) * 0x1.0p-53; }
-
-double dem_dist_draw(dem_world *w, const dem_distribution *d)
-{
-    switch (d->kind) {
-    case DEM_DIST_FIXED: return d->a;
-    case DEM_DIST_UNIFORM: return d->a + (d->b - d->a) * dem_rng_uniform(w);
-    case DEM_DIST_NORMAL:
-        for (;;) { /* Box-Muller, truncated at +-3 sigma by rejection */
-            double u1 = dem_rng_uniform(w), u2 = dem_rng_uniform(w);
-            if (u1 <= 0) continue;
-            double z = sqrt(-2.0 * log(u1)) * cos(2.0 * DEM_PI * u2);
-            if (fabs(z) <= 3.0) return d->a + d->b * z;
-        }
-    case DEM_DIST_DISCRETE: {
-        double tot = 0;
-        for (size_t k = 0; k < d->n; ++k) tot += d->weights[k];
-        double u = dem_rng_uniform(w) * tot, acc = 0;
-        for (size_t k = 0; k < d->n; ++k) { acc += d->weights[k]; if (u < acc) return d->values[k]; }
-        return d->values[d->n - 1];
-    }
-    }
-    return d->a;
+    double c = 2.0 * 0.4 * tgamma(0.4) * tgamma(0.5) / tgamma(0.9);
+    double dm = pow(15.0 * meff * v * v / (16.0 * estar * sqrt(rstar)), 0.4);
+    return c * dm / v;
 }

@@ -118,7 +118,7 @@ static inline void kick1(dem_world *w, size_t i, double h, const double *g) { ki
 /* Kicks (nk = 1 or 2 half kicks), drift and the largest squared displacement
  * since the last list build, for the common case without coupling arrays:
  * the arithmetic of kick_n and of the drift in dem_world_step, in one loop
- * the compiler vectorises; multiversioned like the pair loop (contact.c), so
+ * the compiler vectorises; multiversioned like the pair loop (laws/hertzMindlin.c), so
  * the same IEEE operations run in every version (bit-identical results). */
 #if defined(__GNUC__)
 __attribute__((always_inline))
@@ -173,7 +173,7 @@ static dem_status step_contact_time(dem_world *w, double *tc, double *vimp)
     if (w->n) {
         int rayleigh = 1;
         if (w->cfg.impact_speed > 0) { *vimp = fmax(*vimp, w->cfg.impact_speed); rayleigh = 0; }
-        dem_contact_time_internal(w, *vimp, rayleigh, tc);
+        dem_contact_time_internal(w, *vimp, rayleigh, 0, tc);
     }
     return DEM_OK;
 }

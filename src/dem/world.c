@@ -5,82 +5,13 @@
   Copyright (C) 2026 the demFoam authors
   License: GPL-3.0-or-later (see LICENSE)
 \*---------------------------------------------------------------------------*/
-#include "dem_private.h"
+#include "law.h"
 #include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/*--- status strings ----------------------------------------------------------*/
-static const char *const status_text[] = {
-#define DEM_X_TEXT(name, text) text,
-    DEM_STATUS_LIST(DEM_X_TEXT)
-#undef DEM_X_TEXT
-};
-
-const char *dem_status_string(dem_status s)
-{
-    if ((int)s < 0 || (int)s >= DEM_STATUS_COUNT) return "unknown status";
-    return status_text[s];
-}
-
-dem_status dem_fail_(const dem_world *wc, dem_status code, const char *file, int line,
-                     const char *fmt, ...)
-{
-    dem_world *w = (dem_world *)wc; /* the error text is mutable state of a const handle */
-    if (!w) return code;
-    const char *base = strrchr(file, '/');
-    base = base ? base + 1 : file;
-    int k = snprintf(w->err, sizeof w->err, "%s:%d: %s: ", base, line, dem_status_string(code));
-    if (k < 0) k = 0;
-    if ((size_t)k < sizeof w->err) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(w->err + k, sizeof w->err - (size_t)k, fmt, ap);
-        va_end(ap);
-    }
-    return code;
-}
-
-void dem_log_(const dem_world *w, dem_log_level lvl, const char *fmt, ...)
-{
-    if (!w || !w->log) return;
-    char buf[512];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(buf, sizeof buf, fmt, ap);
-    va_end(ap);
-    w->log(lvl, buf, w->log_user);
-}
-
-const char *dem_world_last_error(const dem_world *w) { return w ? w->err : ""; }
-
-void dem_world_set_logger(dem_world *w, dem_log_fn fn, void *user)
-{
-    if (!w) return;
-    w->log = fn;
-    w->log_user = user;
-}
-
-/*--- contact law names -------------------------------------------------------*/
-static const char *const law_names[DEM_CONTACT_LAW_COUNT] = {
-    "hertzMindlin", "linearSpringDashpot", "hertzSpringDashpot"};
-
-const char *dem_contact_law_name(dem_contact_law law)
-{
-    if ((int)law < 0 || law >= DEM_CONTACT_LAW_COUNT) return NULL;
-    return law_names[law];
-}
-
-dem_status dem_contact_law_from_name(const char *name, dem_contact_law *law)
-{
-    if (!name || !law) return DEM_ERR_ARG;
-    for (int i = 0; i < DEM_CONTACT_LAW_COUNT; ++i)
-        if (strcmp(name, law_names[i]) == 0) { *law = (dem_contact_law)i; return DEM_OK; }
-    return DEM_ERR_NOTFOUND;
-}
 
 /*--- world -------------------------------------------------------------------*/
 void dem_config_default(dem_config *c)
@@ -180,6 +111,7 @@ static void config_copy(dem_config *dst, const dem_config *c)
     dst->max_overlap_ratio = c->max_overlap_ratio;
     dst->seed = c->seed;
     dst->spatial_sort = c->spatial_sort;
+    dst->damping_predicted = c->damping_predicted ? 1 : 0;
     dst->impact_speed = c->impact_speed;
 }
 _Static_assert(offsetof(dem_config, impact_speed) + sizeof(double) == sizeof(dem_config),
@@ -195,13 +127,14 @@ dem_status dem_world_configure(dem_world *w, const dem_config *c)
     dem_status st = dem_config_check(w, c);
     if (st) return st;
     if (w->n + w->ng > 0) {
-        int same = c->contact_law == w->cfg.contact_law && c->skin == w->cfg.skin;
+        int same = c->contact_law == w->cfg.contact_law && c->skin == w->cfg.skin &&
+                   (c->damping_predicted != 0) == (w->cfg.damping_predicted != 0);
         for (int k = 0; k < 3; ++k)
             same = same && c->domain_lo[k] == w->cfg.domain_lo[k] &&
                    c->domain_hi[k] == w->cfg.domain_hi[k] &&
                    (c->periodic[k] != 0) == (w->cfg.periodic[k] != 0);
         if (!same)
-            return DEM_FAIL(w, DEM_ERR_STATE, "contact_law, domain, periodic and skin cannot change "
+            return DEM_FAIL(w, DEM_ERR_STATE, "contact_law, damping_predicted, domain, periodic and skin cannot change "
                             "once particles exist (%zu particles); dt, gravity and limits can", w->n);
         double g[3] = {c->gravity[0], c->gravity[1], c->gravity[2]};
         w->cfg.dt = c->dt;
@@ -293,8 +226,8 @@ dem_status dem_world_set_pair(dem_world *w, int material_a, int material_b, cons
     return DEM_OK;
 }
 
-/* Checks of a material (what: its name in the message); law_check: also the law's
- * stiffness (E for Hertz-Mindlin, k_n for spring-dashpot). */
+/* Checks of a material (what: its name in the message); law_check: also the
+ * stiffness the law needs (dem_law.stiffness_name). */
 dem_status dem_material_check(dem_world *w, const dem_material *m, const char *what, int law_check)
 {
     if (!(m->poisson_ratio >= 0.0 && m->poisson_ratio < 0.5))
@@ -325,28 +258,13 @@ dem_status dem_material_check(dem_world *w, const dem_material *m, const char *w
                         "restitution in (0, 1] or damping >= 0 (finite)", what, m->restitution, m->damping);
     }
     if (!law_check) return DEM_OK;
-    int hertz = w->cfg.contact_law == DEM_CONTACT_HERTZ_MINDLIN;
-    if (hertz && !(m->youngs_modulus > 0))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: youngs_modulus = %g; allowed > 0 (law %s)",
-                        what, m->youngs_modulus, law_names[w->cfg.contact_law]);
-    if (!hertz && !(m->stiffness_n > 0))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: stiffness_n = %g; allowed > 0 (law %s)",
-                        what, m->stiffness_n, law_names[w->cfg.contact_law]);
+    const dem_law *law = dem_law_of(w);
+    if (!(law->stiffness(m) > 0))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: %s = %g; allowed > 0 (law %s)",
+                        what, law->stiffness_name, law->stiffness(m), law->name);
     return DEM_OK;
 }
 
-/* Restitution of a material for the current law (linear law with a damping
- * in N s/m: -1, it depends on the mass). */
-static void material_derived(const dem_world *w, const dem_material *m, double *e, double *c)
-{
-    if (w->cfg.contact_law == DEM_CONTACT_HERTZ_MINDLIN) {
-        if (m->restitution > 0) { *e = m->restitution; *c = dem_hm_damping(m->restitution); }
-        else { *c = m->damping; *e = dem_hm_restitution(m->damping); }
-    } else {
-        *e = m->restitution > 0 ? m->restitution : -1.0;
-        *c = m->damping;
-    }
-}
 
 dem_status dem_world_material_get(const dem_world *w, int id, dem_material *m)
 {
@@ -360,103 +278,8 @@ dem_status dem_world_material_get(const dem_world *w, int id, dem_material *m)
         m->restitution = w->mat_e[id];
         m->damping = w->mat_c[id];
     } else {
-        material_derived(w, &w->mat[id], &m->restitution, &m->damping);
+        dem_law_of(w)->derived(&w->mat[id], &m->restitution, &m->damping);
     }
-    return DEM_OK;
-}
-
-int dem_material_rigid(const dem_material *m, int law)
-{
-    return isinf(law == DEM_CONTACT_HERTZ_MINDLIN ? m->youngs_modulus : m->stiffness_n);
-}
-
-/* Combined parameters of one material pair (combination rules of dem.h). */
-static void pair_compute(int law, const dem_material *a, double ea, double ca, const dem_material *b,
-                         double eb, double cb, int like, dem_pair *q)
-{
-    memset(q, 0, sizeof *q);
-    /* a rigid body does not deform: the other one's elasticity alone */
-    int ra = dem_material_rigid(a, law), rb = dem_material_rigid(b, law);
-    q->mu = fmin(a->friction, b->friction);
-    q->mu_r = fmin(a->rolling_friction, b->rolling_friction);
-    q->nu = ra && !rb ? b->poisson_ratio : rb && !ra ? a->poisson_ratio : 0.5 * (a->poisson_ratio + b->poisson_ratio);
-    /* two rigid bodies never touch (walls only): no elastic constants */
-    if (ra && rb) return;
-    q->mindlin = (2.0 - q->nu) / (2.0 * (1.0 - q->nu));
-    if (law == DEM_CONTACT_HERTZ_MINDLIN) {
-        q->estar = 1.0 / ((1.0 - a->poisson_ratio * a->poisson_ratio) / a->youngs_modulus +
-                          (1.0 - b->poisson_ratio * b->poisson_ratio) / b->youngs_modulus);
-        q->e = fmin(ea, eb);
-        q->cn = q->ct = (ea <= eb) ? ca : cb;
-        q->k43 = 4.0 / 3.0 * q->estar;
-        q->cn8 = q->cn * sqrt(8.0 * q->estar);
-        q->mumind = q->mu * q->mindlin;
-        q->imumind = q->mumind > 0 ? 1.0 / q->mumind : 0.0;
-        q->k43_mind = q->k43 / q->mindlin;
-        q->ct8 = q->ct * sqrt(8.0 * q->estar / q->mindlin);
-    } else {
-        if (ra != rb) {
-            const dem_material *soft = ra ? b : a;
-            q->kn = soft->stiffness_n;
-            q->kt = soft->stiffness_t;
-        } else {
-            q->kn = like ? a->stiffness_n : a->stiffness_n * b->stiffness_n / (a->stiffness_n + b->stiffness_n);
-            q->kt = like ? a->stiffness_t : a->stiffness_t * b->stiffness_t / (a->stiffness_t + b->stiffness_t);
-        }
-        if (ea > 0 && eb > 0) {
-            q->e = fmin(ea, eb);
-            q->beta = dem_lsd_beta(q->e);
-            q->eta_fixed = -1.0;
-        } else {
-            q->e = -1.0;
-            q->eta_fixed = fmax(ea > 0 ? -1.0 : ca, eb > 0 ? -1.0 : cb);
-            q->beta = 0.0;
-        }
-    }
-}
-
-dem_status dem_pairs_update(dem_world *w)
-{
-    if (!w->pairs_dirty) return DEM_OK;
-    int nm = w->nmat;
-    dem_pair *p = realloc(w->pair, (nm > 0 ? (size_t)nm * (size_t)nm : 1) * sizeof *p);
-    if (!p) return DEM_FAIL(w, DEM_ERR_NOMEM, "pair table %d x %d", nm, nm);
-    w->pair = p;
-    if (nm == 0) memset(p, 0, sizeof *p); /* the kernels read entry 0 */
-    int law = w->cfg.contact_law;
-    for (int i = 0; i < nm; ++i) {
-        const dem_material *a = &w->mat[i];
-        if (law == DEM_CONTACT_HERTZ_MINDLIN && !(a->youngs_modulus > 0))
-            return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: youngs_modulus = %g; allowed > 0 (law %s)",
-                            i, a->youngs_modulus, law_names[law]);
-        if (law != DEM_CONTACT_HERTZ_MINDLIN && !(a->stiffness_n > 0))
-            return DEM_FAIL(w, DEM_ERR_RANGE, "material %d: stiffness_n = %g; allowed > 0 (law %s)",
-                            i, a->stiffness_n, law_names[law]);
-    }
-    if (w->derived_law != (int)law) w->nmat_derived = 0;
-    if (w->nmat_derived < nm) {
-        double *e = realloc(w->mat_e, (size_t)nm * sizeof(double));
-        if (e) w->mat_e = e;
-        double *c = realloc(w->mat_c, (size_t)nm * sizeof(double));
-        if (c) w->mat_c = c;
-        if (!e || !c) return DEM_FAIL(w, DEM_ERR_NOMEM, "material cache %d", nm);
-        for (int i = w->nmat_derived; i < nm; ++i) material_derived(w, &w->mat[i], &w->mat_e[i], &w->mat_c[i]);
-        w->nmat_derived = nm;
-        w->derived_law = law;
-    }
-    for (int i = 0; i < nm; ++i)
-        for (int j = 0; j < nm; ++j)
-            pair_compute(law, &w->mat[i], w->mat_e[i], w->mat_c[i], &w->mat[j], w->mat_e[j], w->mat_c[j],
-                         i == j, &p[(size_t)i * (size_t)nm + (size_t)j]);
-    for (int k = 0; k < w->novr; ++k) {
-        const dem_pair_override *o = &w->ovr[k];
-        if (o->a >= nm || o->b >= nm) continue;
-        double e, c;
-        material_derived(w, &o->m, &e, &c);
-        pair_compute(law, &o->m, e, c, &o->m, e, c, 1, &p[(size_t)o->a * (size_t)nm + (size_t)o->b]);
-        p[(size_t)o->b * (size_t)nm + (size_t)o->a] = p[(size_t)o->a * (size_t)nm + (size_t)o->b];
-    }
-    w->pairs_dirty = 0;
     return DEM_OK;
 }
 
@@ -802,96 +625,6 @@ dem_status dem_world_particle_contacts(const dem_world *w, int *coord, double *f
         }
     }
     return DEM_OK;
-}
-
-/*--- contact time ------------------------------------------------------------------*/
-/* Elastic Hertz contact duration t_c = 2 * (2/5) B(2/5,1/2) * delta_max / v,
- * delta_max = (15 m v^2 / (16 E* sqrt(R)))^(2/5) (Hertz theory; e.g. Johnson,
- * Contact Mechanics, 1985, sec. 11.4). */
-double dem_hertz_time(double meff, double rstar, double estar, double v)
-{
-    double c = 2.0 * 0.4 * tgamma(0.4) * tgamma(0.5) / tgamma(0.9);
-    double dm = pow(15.0 * meff * v * v / (16.0 * estar * sqrt(rstar)), 0.4);
-    return c * dm / v;
-}
-
-/* Rayleigh time pi R sqrt(rho/G) / (0.1631 nu + 0.8766) (Rayleigh-wave
- * speed fit; Li, Xu & Thornton, Powder Technol. 160 (2005) 219). */
-static double rayleigh_time(double r, double rho, double E, double nu)
-{
-    double G = E / (2.0 * (1.0 + nu));
-    return DEM_PI * r * sqrt(rho / G) / (0.1631 * nu + 0.8766);
-}
-
-/* Smallest contact time over material pairs present.  v_imp <= 0 with a
- * Hertz law: Rayleigh time only. */
-dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayleigh, double *tc)
-{
-    *tc = INFINITY;
-    int nm = w->nmat;
-    if (nm == 0 || w->n + w->ng == 0) return DEM_OK;
-    double rmin[64], mmin[64], rhomax[64];
-    int present[64];
-    if (nm > 64) nm = 64; /* contact-time estimate over the first 64 materials */
-    for (int m = 0; m < nm; ++m) { rmin[m] = INFINITY; mmin[m] = INFINITY; rhomax[m] = 0; present[m] = 0; }
-    for (size_t i = 0; i < w->n + w->ng; ++i) {
-        int m = w->mat_of[i];
-        if (m >= nm) continue;
-        present[m] = 1;
-        if (w->rad[i] < rmin[m]) rmin[m] = w->rad[i];
-        if (w->mass[i] < mmin[m]) mmin[m] = w->mass[i];
-        if (w->rho[i] > rhomax[m]) rhomax[m] = w->rho[i];
-    }
-    int wallmat[64] = {0};
-    for (int k = 0; k < w->nplanes; ++k) if (w->planes[k].material < nm) wallmat[w->planes[k].material] = 1;
-    for (int k = 0; k < w->nmeshes; ++k) if (w->meshes[k].material < nm) wallmat[w->meshes[k].material] = 1;
-    for (int a = 0; a < nm; ++a) {
-        if (!present[a]) continue;
-        for (int b = 0; b < nm; ++b) {
-            if (!present[b] && !wallmat[b]) continue;
-            const dem_pair *q = &w->pair[a * w->nmat + b];
-            /* particle-particle (smallest of each) and particle-wall */
-            double meff_pp = present[b] ? mmin[a] * mmin[b] / (mmin[a] + mmin[b]) : INFINITY;
-            double rs_pp = present[b] ? rmin[a] * rmin[b] / (rmin[a] + rmin[b]) : INFINITY;
-            for (int wall = 0; wall < 2; ++wall) {
-                double meff = wall ? mmin[a] : meff_pp, rs = wall ? rmin[a] : rs_pp;
-                if (wall && !wallmat[b]) continue;
-                if (!isfinite(meff)) continue;
-                double t;
-                if (w->cfg.contact_law == DEM_CONTACT_HERTZ_MINDLIN) {
-                    t = INFINITY;
-                    if (v_imp > 0) t = dem_hertz_time(meff, rs, q->estar, v_imp);
-                    if (rayleigh || !(v_imp > 0)) {
-                        const dem_material *ma = &w->mat[a];
-                        t = fmin(t, rayleigh_time(rmin[a], rhomax[a], ma->youngs_modulus, ma->poisson_ratio));
-                    }
-                } else {
-                    double eta = q->eta_fixed >= 0 ? q->eta_fixed : q->beta * sqrt(q->kn * meff);
-                    double gam = eta / meff, om2 = q->kn / meff - 0.25 * gam * gam;
-                    t = om2 > 0 ? DEM_PI / sqrt(om2) : INFINITY;
-                    if (w->cfg.contact_law == DEM_CONTACT_HERTZ_SPRING_DASHPOT && v_imp > 0) {
-                        /* f = sqrt(delta/d): k_n delta^(3/2)/sqrt(d) acts as Hertz with
-                           (4/3) E* sqrt(R*) = k_n / sqrt(d) */
-                        double d = 2.0 * rs * (wall ? 1.0 : 2.0);
-                        double es = 0.75 * q->kn / sqrt(d * rs);
-                        t = dem_hertz_time(meff, rs, es, v_imp);
-                    }
-                }
-                if (t < *tc) *tc = t;
-            }
-        }
-    }
-    return DEM_OK;
-}
-
-dem_status dem_world_contact_time(const dem_world *wc, double impact_speed, double *t_contact)
-{
-    if (!wc) return DEM_ERR_ARG;
-    DEM_NEED(wc, t_contact, "contact_time");
-    dem_world *w = (dem_world *)wc; /* pair table is a cache */
-    dem_status s = dem_pairs_update(w);
-    if (s) return s;
-    return dem_contact_time_internal(w, impact_speed, 0, t_contact);
 }
 
 dem_status dem_world_memory(const dem_world *w, size_t *particle_bytes, size_t *list_bytes)

@@ -26,6 +26,12 @@
  * the last calls. */
 #define _POSIX_C_SOURCE 200809L
 #include "check.h"
+
+/* laws whose stiffness is youngs_modulus and whose damping is dimensionless */
+static int hertz_law(int law)
+{
+    return law == DEM_CONTACT_HERTZ_MINDLIN || law == DEM_CONTACT_HERTZ_MINDLIN_NO_SLIP;
+}
 #include <float.h>
 #include <limits.h>
 #include <stdint.h>
@@ -257,9 +263,9 @@ static dem_material good_material(int law)
     m.rolling_friction = coin(2) ? 0.0 : rr(0, 3e-5);
     /* Hertz-Mindlin: mostly a damping; a restitution is mapped to a damping
        by bisection over ODE solutions (~0.1 s, again after each restore) */
-    if (law != DEM_CONTACT_HERTZ_MINDLIN || coin(40)) { m.restitution = rr(0.3, 1.0); m.damping = -1; }
+    if (!hertz_law(law) || coin(40)) { m.restitution = rr(0.3, 1.0); m.damping = -1; }
     else { m.restitution = -1; m.damping = rr(0.0, 0.4); }
-    if (law != DEM_CONTACT_HERTZ_MINDLIN && coin(4)) { m.restitution = -1; m.damping = rr(0, 1e-3); }
+    if (!hertz_law(law) && coin(4)) { m.restitution = -1; m.damping = rr(0, 1e-3); }
     return m;
 }
 
@@ -386,7 +392,7 @@ static void bad_material(fz *F)
     case 5: m.restitution = -1; m.damping = coin(2) ? -1 : (coin(2) ? NAN : INFINITY); break; /* neither */
     case 6: { double b = bad_nonpositive();
               if (b == INFINITY) b = -INFINITY;   /* DEM_RIGID is valid */
-              if (F->law == DEM_CONTACT_HERTZ_MINDLIN) m.youngs_modulus = b;
+              if (hertz_law(F->law)) m.youngs_modulus = b;
               else m.stiffness_n = b;
             } break;
     /* (+INFINITY is DEM_RIGID, a valid wall material) */

@@ -73,6 +73,8 @@ typedef enum {
     DEM_CONTACT_HERTZ_MINDLIN = 0, /* [Z] Table 2: Hertz + Mindlin-Deresiewicz (delta_t,max), rolling friction */
     DEM_CONTACT_LINEAR_SPRING_DASHPOT, /* [S] 17-26, f = 1 */
     DEM_CONTACT_HERTZ_SPRING_DASHPOT,  /* [S] 17-26, f = sqrt(delta/d) */
+    DEM_CONTACT_HERTZ_MINDLIN_NO_SLIP, /* Hertz normal as hertzMindlin; incremental Mindlin no-slip
+                                          tangential spring k_t = 8 G* sqrt(R* delta), Coulomb limit */
     DEM_CONTACT_LAW_COUNT
 } dem_contact_law;
 
@@ -95,6 +97,12 @@ typedef struct {
     uint64_t seed;           /* random seed for insertion */
     int    spatial_sort;     /* added: 1 (default) re-sorts owned particles by cell at each
                                 neighbour-list build (storage order changes; use id) */
+    int    damping_predicted;/* added: 1: the normal damping force of every law uses the relative
+                                normal velocity at the end of the step, predicted from the pair's
+                                own force (restitution within 0.5 % of the requested e at
+                                dt = t_c/50; docs/theory.md, "Damping in the time step");
+                                0 (default): the half-step velocity of velocity Verlet (first
+                                order in dt; e a few % low at t_c/50 for e < 0.3) */
     double impact_speed;     /* added: Hertz laws' time-step check.  0 (default): dt is checked
                                 against min(Rayleigh time, Hertz time at 2 max|v| + max wall speed);
                                 > 0: against the Hertz time at max(impact_speed, 2 max|v| + wall
@@ -246,6 +254,11 @@ dem_status dem_world_max_dt(dem_world *w, double *dt_max);
 /** Smallest contact time estimate over the material pairs and particle
  *  sizes present (Hertz: at the given impact speed; linear: t_c of [S]). */
 dem_status dem_world_contact_time(const dem_world *w, double impact_speed, double *t_contact);
+/** The same with the pairs' damping (longer): hertzMindlin scales the Hertz
+ *  time by the damped/elastic duration of its scaled impact (depends on c_n
+ *  only), linearSpringDashpot gives its damped half period (as
+ *  dem_world_contact_time does), hertzSpringDashpot the elastic Hertz time. */
+dem_status dem_world_contact_time_damped(const dem_world *w, double impact_speed, double *t_contact);
 
 /*--- walls --------------------------------------------------------------------*/
 /** Infinite plane through point with the given normal, which must point INTO

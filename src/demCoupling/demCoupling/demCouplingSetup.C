@@ -187,6 +187,7 @@ void Foam::demCoupling::configureWorld()
         d.getOrDefault<scalar>("maxOverlapRatio", c.max_overlap_ratio);
     c.seed = uint64_t(d.getOrDefault<label>("seed", 1));
     c.impact_speed = d.getOrDefault<scalar>("impactSpeed", c.impact_speed);
+    c.damping_predicted = d.getOrDefault<bool>("dampingPredicted", false);
 
     world_.check(dem_world_configure(world_, &c), "dem_world_configure");
 

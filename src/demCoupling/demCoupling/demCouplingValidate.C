@@ -255,7 +255,8 @@ bool Foam::demCoupling::checkDictionary
         num("skin", kind::Scalar, 0, inf, false, false),
         num("domainMargin", kind::Scalar, 0, inf, false, false),
         num("seed", kind::Label, 0, inf, false, false),
-        num("impactSpeed", kind::Scalar, 0, inf, false, false)}));
+        num("impactSpeed", kind::Scalar, 0, inf, false, false),
+        any("dampingPredicted", kind::Bool)}));
     chk.require(dem, "dem/", "timeStep", "the DEM time step [s] > 0");
 
     // materials
