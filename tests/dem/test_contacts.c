@@ -13,12 +13,14 @@
  *   contact force bit for bit, and m dv over one step equals
  *   dt/2 (F_old + F_new) of velocity Verlet (1e-12 relative, round-off);
  * - a sphere on a rigid plane: E* = E/(1 - nu^2), R* = a, the wall id;
+ *   on the shared edge of a two-triangle mesh: one contact, Hertz's force;
  * - a sheared contact, every law: a tangential force normal to n (1e-12),
  *   against the relative sliding velocity, within mu |f_n|;
  * - a small periodic bed per law: per particle, the reported forces sum to
  *   its contact force (1e-12 of the sum of the magnitudes: summation order),
  *   no pair twice, the count is dem_stats' pair + wall contacts, and the
- *   same bed without recording ends bit-identical;
+ *   same bed without recording ends bit-identical; again with two
+ *   materials and damping_predicted (the general pair loops);
  * - an owned-ghost contact is reported once, flagged;
  * - errors: buffer too small, recording off, particles changed, NULLs. */
 #include "check.h"
@@ -140,6 +142,32 @@ static void hertz_wall(void)
     dem_world_destroy(&w);
 }
 
+/* a sphere pressed onto the shared edge of two triangles: one contact */
+static void mesh_wall(void)
+{
+    const double a = 1e-3, rho = 2500, E = 1e7, nu = 0.3, d0 = 1e-5, h = 4e-3;
+    dem_world *w = test_world(DEM_CONTACT_HERTZ_MINDLIN, 1e-7, NULL, 0.01);
+    dem_material mat = test_material(E, nu, 0.0, 0.0, 1.0), rig = test_material(DEM_RIGID, 0.25, 0.0, 0.0, 1.0);
+    int mid, rid, wid;
+    TRY(w, dem_world_add_material(w, &mat, &mid));
+    TRY(w, dem_world_add_material(w, &rig, &rid));
+    const double v[12] = {-h, -h, 0, h, -h, 0, h, h, 0, -h, h, 0};
+    const int tri[6] = {0, 1, 2, 0, 2, 3};
+    TRY(w, dem_world_add_trimesh(w, 4, v, 2, tri, rid, NULL, &wid));
+    dem_particle p = test_particle(0, 0, a - d0, 0, 0, 0, a, rho, mid);
+    TRY(w, dem_world_add_particles(w, 1, &p));
+    TRY(w, dem_world_record_contacts(w, 1));
+    TRY(w, dem_world_step(w, 1));
+    dem_contact c = one_contact(w, "sphere on the shared edge of a mesh");
+    dem_arrays A;
+    TRY(w, dem_world_arrays(w, &A));
+    check_abs("sphere on mesh: wall flag 1, id_b = mesh wall id", (double)(c.wall * 100 + c.id_b), 100.0 + wid, 0.0);
+    check_rel("sphere on mesh: overlap vs a - z [m]", c.overlap, a - A.x[2], 1e-12);
+    const double fh = 4.0 / 3.0 * E / (1.0 - nu * nu) * sqrt(a) * pow(c.overlap, 1.5);
+    check_rel("sphere on mesh: force_n z vs Hertz, rigid mesh [N]", c.force_n[2], fh, 1e-12);
+    dem_world_destroy(&w);
+}
+
 static void sheared(dem_contact_law law)
 {
     const double a = 1e-3, rho = 2500, d0 = 2e-5, dt = 1e-6, vs = 0.02, mu = 0.5;
@@ -179,8 +207,10 @@ static void sheared(dem_contact_law law)
     dem_world_destroy(&w);
 }
 
-/* A periodic bed of 150 spheres on a floor; rec: record contacts. */
-static dem_world *bed(dem_contact_law law, int rec, int64_t nsteps)
+/* A periodic bed of 150 spheres on a floor; rec: record contacts; mixed:
+ * a second material for the floor and damping_predicted (the general pair
+ * loops). */
+static dem_world *bed(dem_contact_law law, int rec, int mixed, int64_t nsteps)
 {
     const double d = 2e-3, L = 6 * d;
     dem_world *w = NULL;
@@ -193,13 +223,20 @@ static dem_world *bed(dem_contact_law law, int rec, int64_t nsteps)
     c.periodic[0] = c.periodic[1] = 1;
     c.domain_lo[2] = 0; c.domain_hi[2] = 0.05;
     c.seed = 11;
+    c.damping_predicted = mixed;
     TRY(w, dem_world_configure(w, &c));
     dem_material m = law_material(law, 0.4, 0.5);
     m.rolling_friction = 2e-5;
-    int mid;
+    int mid, fid;
     TRY(w, dem_world_add_material(w, &m, &mid));
+    fid = mid;
+    if (mixed) {
+        dem_material f = m;
+        f.friction = 0.3; f.restitution = 0.7;
+        TRY(w, dem_world_add_material(w, &f, &fid));
+    }
     double p0[3] = {0, 0, 0}, nz[3] = {0, 0, 1};
-    TRY(w, dem_world_add_plane(w, p0, nz, mid, NULL, NULL));
+    TRY(w, dem_world_add_plane(w, p0, nz, fid, NULL, NULL));
     dem_particle_template t;
     memset(&t, 0, sizeof t);
     t.diameter.kind = DEM_DIST_UNIFORM; t.diameter.a = 0.8 * d; t.diameter.b = d;
@@ -221,12 +258,12 @@ static int cmp_pair(const void *x, const void *y)
     return 0;
 }
 
-static void bed_sums(dem_contact_law law)
+static void bed_sums(dem_contact_law law, int mixed)
 {
-    const char *ln = dem_contact_law_name(law);
-    char name[200];
+    char ln[120], name[240];
+    snprintf(ln, sizeof ln, "%s%s", dem_contact_law_name(law), mixed ? " (2 materials, damping_predicted)" : "");
     const int64_t nsteps = QUICK ? 3000 : 8000;
-    dem_world *w = bed(law, 1, nsteps), *w0 = bed(law, 0, nsteps);
+    dem_world *w = bed(law, 1, mixed, nsteps), *w0 = bed(law, 0, mixed, nsteps);
     size_t nc = 0;
     TRY(w, dem_world_contacts(w, NULL, 0, &nc));
     dem_contact *c = malloc((nc + 1) * sizeof *c);
@@ -375,7 +412,9 @@ int main(void)
     hertz_pair();
     hertz_wall();
     for (int k = 0; k < 4; ++k) sheared(laws[k]);
-    for (int k = 0; k < 4; ++k) bed_sums(laws[k]);
+    for (int k = 0; k < 4; ++k) bed_sums(laws[k], 0);
+    for (int k = 0; k < 4; ++k) bed_sums(laws[k], 1);
+    mesh_wall();
     ghost_pair();
     errors();
     return check_exit();
