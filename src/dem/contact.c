@@ -9,12 +9,13 @@
   contacts, far fewer, call the law's one-contact kernel through the table.
 \*---------------------------------------------------------------------------*/
 #include "contactKernel.h"
+#include <stdlib.h>
 #include <string.h>
 
 /* One wall contact of particle i with unit normal n (wall -> centre),
  * overlap delta, wall velocity vw. */
-static inline void wall_contact(dem_world *w, dem_contact_fn one, size_t i, const double n[3], double delta,
-                                const double vw[3], int wallmat, double *h)
+static inline void wall_contact(dem_world *w, dem_contact_fn one, size_t i, int wall, const double n[3],
+                                double delta, const double vw[3], int wallmat, double *h)
 {
     const double ai = w->rad[i], mi = w->mass[i];
     const double *vi = w->v + 3 * i, *wi = w->w + 3 * i;
@@ -23,8 +24,9 @@ static inline void wall_contact(dem_world *w, dem_contact_fn one, size_t i, cons
     dem_cross(W, n, cr);
     const double vc[3] = {vi[0] - vw[0] - cr[0], vi[1] - vw[1] - cr[1], vi[2] - vw[2] - cr[2]};
     const dem_pair *q = &w->pair[(size_t)w->mat_of[i] * w->nmat + wallmat];
-    double F[3], ft[3], fel;
-    one(q, w->hdt, n, delta, 2.0 * ai, vc, mi, ai, h, F, ft, &fel);
+    double F[3], ft[3], fel, fn;
+    one(q, w->hdt, n, delta, 2.0 * ai, vc, mi, ai, h, F, ft, &fel, &fn);
+    if (w->crec_now) dem_record_contact(w, i, wall, 1, 0, delta, n, fn, ft);
     double c[3];
     dem_cross(n, ft, c);
     for (int k = 0; k < 3; ++k) {
@@ -61,7 +63,7 @@ static void wall_loop(dem_world *w, dem_contact_fn one)
                 for (int c = 0; c < 3; ++c)
                     d += (xi[c] - P->x0[c] - P->vel[c] * (w->time - P->t0)) * P->n[c];
                 if (d >= ai || d <= -ai) { h[0] = h[1] = h[2] = 0.0; continue; }
-                wall_contact(w, one, i, P->n, ai - d, P->vel, P->material, h);
+                wall_contact(w, one, i, wall, P->n, ai - d, P->vel, P->material, h);
             } else {
                 const dem_mesh *m = &w->meshes[w->wall_index[wall]];
                 int t = w->wc_tri[k];
@@ -144,14 +146,36 @@ static void wall_loop(dem_world *w, dem_contact_fn one)
                 const double *tn = m->nrm + 3 * w->wc_tri[k];
                 for (int c = 0; c < 3; ++c) n[c] = tn[c];
             }
-            wall_contact(w, one, i, n, ai - d, m->vel, m->material, h);
+            wall_contact(w, one, i, wall, n, ai - d, m->vel, m->material, h);
         }
     }
+}
+
+/* Room in the contact record for every list entry and wall candidate (an
+ * upper bound of the contacts); 0 if recording is off or memory is short
+ * (the evaluation then goes unrecorded and dem_world_contacts says so). */
+static int record_ready(dem_world *w)
+{
+    if (!w->crec_on) return 0;
+    size_t need = w->nnb + w->nwc;
+    if (need > w->capcrec) {
+        size_t cap = need + need / 4 + 16;
+        dem_contact *c = realloc(w->crec, cap * sizeof *c);
+        if (!c) {
+            dem_log_(w, DEM_LOG_WARNING, "contact record: no memory for %zu contacts; step %lld not recorded",
+                     cap, (long long)w->step);
+            return 0;
+        }
+        w->crec = c; w->capcrec = cap;
+    }
+    return 1;
 }
 
 void dem_forces(dem_world *w, double hist_dt)
 {
     w->hdt = hist_dt;
+    w->ncrec = 0;
+    w->crec_now = record_ready(w);
     size_t np = w->n + w->ng;
     if (np) {
         memset(w->f, 0, 3 * np * sizeof(double));
@@ -167,4 +191,6 @@ void dem_forces(dem_world *w, double hist_dt)
     w->wall_contacts = 0;
     if (w->nwalls) wall_loop(w, law->contact);
     w->forces_valid = 1;
+    w->crec_valid = w->crec_now;
+    w->crec_now = 0;
 }

@@ -74,10 +74,25 @@ static inline void dem_rolling(double mu_r, double fel, const double *wi, const 
     M[0] = c * wr[0]; M[1] = c * wr[1]; M[2] = c * wr[2];
 }
 
+/* Append one contact to the record (capacity ensured by dem_forces). */
+static inline void dem_record_contact(dem_world *w, size_t a, int64_t b, int wall, int ghost, double delta,
+                                      const double n[3], double fn, const double ft[3])
+{
+    dem_contact *c = w->crec + w->ncrec++;
+    c->id_a = w->id[a]; c->id_b = wall ? b : w->id[b];
+    c->wall = wall; c->ghost = ghost; c->overlap = delta;
+    for (int k = 0; k < 3; ++k) {
+        c->normal[k] = n[k];
+        c->force_n[k] = fn * n[k];   /* the product the kernel adds to ft (law.h) */
+        c->force_t[k] = ft[k];
+    }
+}
+
 /* The scalar pair loop of a law whose kernel is `one` (a constant at each
- * call site, so that the compiler inlines it), specialised by periodicity. */
+ * call site, so that the compiler inlines it), specialised by periodicity
+ * and by recording (record = 1: each touching pair also goes to w->crec). */
 static DEM_ALWAYS_INLINE void dem_pair_loop(dem_world *w, dem_contact_fn one, const int periodic,
-                                            double *maxov, size_t *ncont)
+                                            const int record, double *maxov, size_t *ncont)
 {
     const double dt = w->hdt;
     const int nm = w->nmat;
@@ -130,8 +145,9 @@ static DEM_ALWAYS_INLINE void dem_pair_loop(dem_world *w, dem_contact_fn one, co
                                   vi[1] - vj[1] - (W2 * n[0] - W0 * n[2]),
                                   vi[2] - vj[2] - (W0 * n[1] - W1 * n[0])};
             const dem_pair *q = prow + mat[j];
-            double F[3], ft[3], fel;
-            one(q, dt, n, delta, s, vc, meff, rstar, h, F, ft, &fel);
+            double F[3], ft[3], fel, fn;
+            one(q, dt, n, delta, s, vc, meff, rstar, h, F, ft, &fel, &fn);
+            if (record) dem_record_contact(w, i, (int64_t)j, 0, i >= w->n || j >= w->n, delta, n, fn, ft);
             fi0 += F[0]; fi1 += F[1]; fi2 += F[2];
             f[3 * j] -= F[0]; f[3 * j + 1] -= F[1]; f[3 * j + 2] -= F[2];
             /* torques: T_i = -a_i n x f_t, T_j = -a_j n x f_t */

@@ -209,6 +209,11 @@ struct dem_world {
     double hdt;              /* history increment of the current force evaluation */
     void *scratch;           /* per-row contact buffer of the phased Hertz-Mindlin loop */
     size_t capscratch;       /* entries */
+    /* per-contact record (dem_world_record_contacts, dem_world_contacts) */
+    int crec_on;             /* the user asked for recording */
+    int crec_now;            /* the current evaluation records (buffer large enough) */
+    int crec_valid;          /* the last evaluation was recorded */
+    dem_contact *crec; size_t ncrec, capcrec;
 };
 
 /*--- function multiversioning ----------------------------------------------*/

@@ -512,12 +512,14 @@ static dem_status restore_stream(dem_world *w, FILE *f, uint64_t size, const cha
     if (!st && (st = dem_pairs_update(nw)))
         DEM_FAIL(w, st, "restore: '%s': %s", name, detail(nw));
     if (st) { dem_world_destroy(&nw); return st; }
-    /* swap contents, keep the logger */
+    /* swap contents, keep the logger and the contact-recording setting */
     dem_log_fn lf = w->log; void *lu = w->log_user;
+    int crec_on = w->crec_on;
     dem_world tmp = *w;
     *w = *nw;
     *nw = tmp;
     w->log = lf; w->log_user = lu;
+    w->crec_on = crec_on;
     w->err[0] = '\0';
     dem_world_destroy(&nw);
     dem_log_(w, DEM_LOG_INFO, "restored '%s': %zu particles, step %lld, t = %g", name, w->n,

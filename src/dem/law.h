@@ -13,11 +13,12 @@
 /* One contact, force on i (convention of contactKernel.h): n unit normal,
  * delta overlap, d = a_i + a_j (pair) or 2 a_i (wall), vc contact-point
  * velocity, meff and rstar the effective mass and radius, h the tangential
- * history (updated); F total force, ft tangential force, *fel elastic normal
- * force (rolling friction uses it). */
+ * history (updated); F total force = *fn n + ft (computed as fn * n[k] +
+ * ft[k]), ft tangential force, *fel elastic normal force (rolling friction
+ * uses it), *fn the normal force along n (contact record). */
 typedef void (*dem_contact_fn)(const dem_pair *q, double dt, const double n[3], double delta, double d,
                                const double vc[3], double meff, double rstar, double *h,
-                               double F[3], double ft[3], double *fel);
+                               double F[3], double ft[3], double *fel, double *fn);
 
 /* What the contact-time estimate knows of one pair (contactTime.c). */
 typedef struct {
@@ -44,6 +45,8 @@ typedef struct {
        damped: the duration with the pair's damping where the law knows it */
     double (*contact_time)(const dem_time_pair *p, double v_imp, int rayleigh, int damped);
     /* all pairs of the neighbour list (one call per force evaluation) */
+    /* all pairs of the neighbour list (one call per force evaluation); when
+       w->crec_now, also appends each touching pair to w->crec (the same arithmetic) */
     void (*pair_forces)(dem_world *w, int periodic, double *max_overlap, size_t *contacts);
     dem_contact_fn contact;     /* one contact (walls) */
 } dem_law;

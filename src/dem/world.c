@@ -63,7 +63,7 @@ void dem_world_destroy(dem_world **pw)
     free(w->meshes);
     free(w->tri_mesh); free(w->tri_local); free(w->tcell_start); free(w->tcell_item);
     for (int i = 0; i < w->ninlets; ++i) free(w->inlets[i].poly);
-    free(w->inlets); free(w->outlets); free(w->rec); free(w->scratch);
+    free(w->inlets); free(w->outlets); free(w->rec); free(w->scratch); free(w->crec);
     free(w);
     *pw = NULL;
 }
@@ -638,6 +638,43 @@ dem_status dem_world_memory(const dem_world *w, size_t *particle_bytes, size_t *
     if (list_bytes)
         *list_bytes = w->capnb * (sizeof(int) + 1 + 3 * sizeof(double)) + w->caprows * sizeof(int) +
                       w->capwc * (2 * sizeof(int) + 3 * sizeof(double)) +
-                      (w->wc_off ? (w->nrows + 1) * sizeof(int) : 0) + w->capscratch * DEM_SCRATCH_ENTRY;
+                      (w->wc_off ? (w->nrows + 1) * sizeof(int) : 0) + w->capscratch * DEM_SCRATCH_ENTRY +
+                      w->capcrec * sizeof(dem_contact);
+    return DEM_OK;
+}
+
+dem_status dem_world_record_contacts(dem_world *w, int on)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (on != 0 && on != 1)
+        return DEM_FAIL(w, DEM_ERR_ARG, "record_contacts: on = %d; allowed 0 (off) or 1 (on)", on);
+    w->crec_on = on;
+    if (!on) {   /* the record goes with the recording */
+        free(w->crec);
+        w->crec = NULL; w->ncrec = w->capcrec = 0; w->crec_valid = 0;
+    }
+    return DEM_OK;
+}
+
+dem_status dem_world_contacts(const dem_world *w, dem_contact *out, size_t capacity, size_t *count)
+{
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, count, "contacts");
+    *count = 0;
+    if (!w->crec_valid)
+        return DEM_FAIL(w, DEM_ERR_STATE, "contacts: the last force evaluation was not recorded (step %lld); call "
+                        "dem_world_record_contacts(w, 1) and take a step first", (long long)w->step);
+    /* as dem_world_particle_contacts: a wall change drops the forces, a
+       particle change (insert, remove, restore, ghost exchange) the list */
+    if (!w->forces_valid || !w->list_valid)
+        return DEM_FAIL(w, DEM_ERR_STATE, "contacts: the particles or walls changed since the last force evaluation "
+                        "(insert, remove, restore, ghost exchange or wall change; step %lld); take a step first",
+                        (long long)w->step);
+    *count = w->ncrec;
+    if (!out) return DEM_OK;
+    if (capacity < w->ncrec)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "contacts: capacity = %zu entries; the last force evaluation has %zu "
+                        "contacts (*count is set; nothing written)", capacity, w->ncrec);
+    if (w->ncrec) memcpy(out, w->crec, w->ncrec * sizeof *out);
     return DEM_OK;
 }

@@ -349,6 +349,39 @@ dem_status dem_world_memory(const dem_world *w, size_t *particle_bytes, size_t *
  *  step. */
 dem_status dem_world_particle_contacts(const dem_world *w, int *coordination, double *contact_force);
 
+/** Added: one contact of the last force evaluation (dem_world_contacts).
+ *  Forces act on particle a (b, a particle, gets the opposite); they are the
+ *  terms the step used: force_n + force_t is, bit for bit, the contact's
+ *  share of a's contact force (rolling-friction torques are not reported). */
+typedef struct {
+    int64_t id_a;            /* particle a (id) */
+    int64_t id_b;            /* wall = 0: particle b (id); wall = 1: the wall id */
+    int     wall;            /* 1: particle-wall contact */
+    int     ghost;           /* 1: a or b is a ghost copy (decomposed run; the pair is also
+                                reported by the rank owning the other particle) */
+    double  overlap;         /* a_a + a_b - |x_a - x_b| (wall: a_a - distance) [m] */
+    double  normal[3];       /* unit normal from b (wall: the closest wall point) to a */
+    double  force_n[3];      /* normal force on a (elastic + damping) = f_n normal [N] */
+    double  force_t[3];      /* tangential force on a [N] */
+} dem_contact;
+/** Added: record the contacts of every force evaluation from now on (on = 1;
+ *  0 stops and frees the record; the setting survives dem_world_restore).
+ *  Off by default: recording writes one
+ *  dem_contact (104 bytes) per contact and evaluation.  The recorded pair
+ *  loop does the same arithmetic as the plain one: trajectories are
+ *  bit-identical with recording on or off. */
+dem_status dem_world_record_contacts(dem_world *w, int on);
+/** Added: the contacts of the last force evaluation: every touching pair of
+ *  the neighbour list once (a periodic pair once, with its image; owned-ghost
+ *  pairs are reported on both ranks, flagged ghost), then the wall contacts.
+ *  *count gets the number of contacts; out NULL: only the count; else
+ *  capacity (entries of out) must be >= *count (DEM_ERR_RANGE, nothing
+ *  written, *count set).  The record belongs to the world; out to the caller.
+ *  DEM_ERR_STATE when recording was off at the last evaluation or the
+ *  particles or walls changed since (the conditions of
+ *  dem_world_particle_contacts): take a step first. */
+dem_status dem_world_contacts(const dem_world *w, dem_contact *out, size_t capacity, size_t *count);
+
 /*--- state ----------------------------------------------------------------------*/
 /** Full state incl. contact history, inlets, outlet accounting and RNG; a
  *  restored world continues bit-identically. */

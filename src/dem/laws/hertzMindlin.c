@@ -61,7 +61,7 @@ static double contact_time(const dem_time_pair *p, double v_imp, int rayleigh, i
  *           x = |delta_t| / delta_t,max                                   */
 static inline void hm_force(const dem_pair *q, double dt, const double n[3], double delta, double d,
                             const double vc[3], double meff, double rstar, double *h,
-                            double F[3], double ft[3], double *fel)
+                            double F[3], double ft[3], double *fel, double *fnout)
 {
     (void)d;
     double vn = vc[0] * n[0] + vc[1] * n[1] + vc[2] * n[2];
@@ -105,6 +105,7 @@ static inline void hm_force(const dem_pair *q, double dt, const double n[3], dou
     }
     F[0] = fn * n[0] + ft[0]; F[1] = fn * n[1] + ft[1]; F[2] = fn * n[2] + ft[2];
     *fel = fcn;
+    *fnout = fn;
 }
 
 /* contacts processed per block in the phased Hertz-Mindlin loop */
@@ -165,9 +166,11 @@ static void soa_map(hm_soa *b, void *mem, size_t cap)
 }
 _Static_assert(44 * sizeof(double) + 3 * sizeof(int) <= DEM_SCRATCH_ENTRY, "scratch entry too small for the SoA buffers");
 
-/* always inlined: each call site is specialised for periodic/uniform */
+/* always inlined: each call site is specialised for periodic/uniform/pred
+ * and rec (1: each contact also goes to the contact record; phase 5 then
+ * keeps f_n and f_t in the dead v_n, v_t buffers for phase 6) */
 static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, const int uniform, const int pred,
-                                           double *maxov,
+                                           const int rec, double *maxov,
                                            size_t *ncont)
 {
     const double dt = w->hdt;
@@ -353,6 +356,7 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
                 fn = Bfcn[a] - C * ((Bme[a] * Bvn[a] + hp * Bfcn[a]) / (Bme[a] + hp * C));
             }
             BF0[a] = fn * n0 + ft0; BF1[a] = fn * n1 + ft1; BF2[a] = fn * n2 + ft2;
+            if (rec) { Bvn[a] = fn; Bvt0[a] = ft0; Bvt1[a] = ft1; Bvt2[a] = ft2; }
             const double c0 = n1 * ft2 - n2 * ft1, c1 = n2 * ft0 - n0 * ft2, c2 = n0 * ft1 - n1 * ft0;
             const double cr = Bcrol[a];
             const double M0 = cr * Bwr0[a], M1 = cr * Bwr1[a], M2 = cr * Bwr2[a];
@@ -369,6 +373,11 @@ static DEM_ALWAYS_INLINE void pair_loop_hm(dem_world *w, const int periodic, con
             f[3 * j] -= F0; f[3 * j + 1] -= F1; f[3 * j + 2] -= F2;
             t[3 * ii] += BTi0[a]; t[3 * ii + 1] += BTi1[a]; t[3 * ii + 2] += BTi2[a];
             t[3 * j] -= BTj0[a]; t[3 * j + 1] -= BTj1[a]; t[3 * j + 2] -= BTj2[a];
+            if (rec) {
+                const double n[3] = {Bd0[a], Bd1[a], Bd2[a]}, ft[3] = {Bvt0[a], Bvt1[a], Bvt2[a]};
+                dem_record_contact(w, (size_t)ii, j, 0, (size_t)ii >= w->n || (size_t)j >= w->n, Bdelta[a], n,
+                                   Bvn[a], ft);
+            }
         }
         nc = 0;
     }
@@ -387,20 +396,25 @@ DEM_MULTIVERSION __attribute__((noinline))
 static void pair_loops_hm(dem_world *w, int per, double *movr, size_t *nct)
 {
     const int u = w->nmat == 1, pred = w->cfg.damping_predicted != 0;
-    if (!pred) {
-        if (u) { if (per) pair_loop_hm(w, 1, 1, 0, movr, nct); else pair_loop_hm(w, 0, 1, 0, movr, nct); }
-        else   { if (per) pair_loop_hm(w, 1, 0, 0, movr, nct); else pair_loop_hm(w, 0, 0, 0, movr, nct); }
+    if (w->crec_now) {
+        /* recording: the general (per-contact constants) loop, whose arithmetic
+           is that of the uniform one with the same values, so the bits agree */
+        if (!pred) { if (per) pair_loop_hm(w, 1, 0, 0, 1, movr, nct); else pair_loop_hm(w, 0, 0, 0, 1, movr, nct); }
+        else       { if (per) pair_loop_hm(w, 1, 0, 1, 1, movr, nct); else pair_loop_hm(w, 0, 0, 1, 1, movr, nct); }
+    } else if (!pred) {
+        if (u) { if (per) pair_loop_hm(w, 1, 1, 0, 0, movr, nct); else pair_loop_hm(w, 0, 1, 0, 0, movr, nct); }
+        else   { if (per) pair_loop_hm(w, 1, 0, 0, 0, movr, nct); else pair_loop_hm(w, 0, 0, 0, 0, movr, nct); }
     } else {
-        if (u) { if (per) pair_loop_hm(w, 1, 1, 1, movr, nct); else pair_loop_hm(w, 0, 1, 1, movr, nct); }
-        else   { if (per) pair_loop_hm(w, 1, 0, 1, movr, nct); else pair_loop_hm(w, 0, 0, 1, movr, nct); }
+        if (u) { if (per) pair_loop_hm(w, 1, 1, 1, 0, movr, nct); else pair_loop_hm(w, 0, 1, 1, 0, movr, nct); }
+        else   { if (per) pair_loop_hm(w, 1, 0, 1, 0, movr, nct); else pair_loop_hm(w, 0, 0, 1, 0, movr, nct); }
     }
 }
 
 static void contact(const dem_pair *q, double dt, const double n[3], double delta, double d,
                     const double vc[3], double meff, double rstar, double *h,
-                    double F[3], double ft[3], double *fel)
+                    double F[3], double ft[3], double *fel, double *fnout)
 {
-    hm_force(q, dt, n, delta, d, vc, meff, rstar, h, F, ft, fel);
+    hm_force(q, dt, n, delta, d, vc, meff, rstar, h, F, ft, fel, fnout);
 }
 
 const dem_law dem_law_hertzMindlin = {

@@ -50,7 +50,7 @@ static double contact_time(const dem_time_pair *p, double v_imp, int rayleigh, i
  * limit f_t is scaled to it and xi set to the spring of that force. */
 static inline void contact(const dem_pair *q, double dt, const double n[3], double delta, double d,
                            const double vc[3], double meff, double rstar, double *h,
-                           double F[3], double ft[3], double *fel)
+                           double F[3], double ft[3], double *fel, double *fnout)
 {
     (void)d;
     double vn = vc[0] * n[0] + vc[1] * n[1] + vc[2] * n[2];
@@ -79,12 +79,16 @@ static inline void contact(const dem_pair *q, double dt, const double n[3], doub
     }
     F[0] = fn * n[0] + ft[0]; F[1] = fn * n[1] + ft[1]; F[2] = fn * n[2] + ft[2];
     *fel = fcn;
+    *fnout = fn;
 }
 
 static void pair_forces(dem_world *w, int periodic, double *max_overlap, size_t *contacts)
 {
-    if (periodic) dem_pair_loop(w, contact, 1, max_overlap, contacts);
-    else dem_pair_loop(w, contact, 0, max_overlap, contacts);
+    if (w->crec_now) {  /* the recording loop (same arithmetic) */
+        if (periodic) dem_pair_loop(w, contact, 1, 1, max_overlap, contacts);
+        else dem_pair_loop(w, contact, 0, 1, max_overlap, contacts);
+    } else if (periodic) dem_pair_loop(w, contact, 1, 0, max_overlap, contacts);
+    else dem_pair_loop(w, contact, 0, 0, max_overlap, contacts);
 }
 
 const dem_law dem_law_hertzMindlinNoSlip = {

@@ -9,10 +9,10 @@
 
 static void contact(const dem_pair *q, double dt, const double n[3], double delta, double d,
                     const double vc[3], double meff, double rstar, double *h,
-                    double F[3], double ft[3], double *fel)
+                    double F[3], double ft[3], double *fel, double *fnout)
 {
     (void)rstar;
-    sd_force(q, dt, n, delta, sqrt(delta / d), vc, meff, h, F, ft, fel);
+    sd_force(q, dt, n, delta, sqrt(delta / d), vc, meff, h, F, ft, fel, fnout);
 }
 
 /* with an impact speed: Hertz's duration, since k_n delta^(3/2)/sqrt(d)
@@ -28,8 +28,11 @@ static double contact_time(const dem_time_pair *p, double v_imp, int rayleigh, i
 
 static void pair_forces(dem_world *w, int periodic, double *max_overlap, size_t *contacts)
 {
-    if (periodic) dem_pair_loop(w, contact, 1, max_overlap, contacts);
-    else dem_pair_loop(w, contact, 0, max_overlap, contacts);
+    if (w->crec_now) {  /* the recording loop (same arithmetic) */
+        if (periodic) dem_pair_loop(w, contact, 1, 1, max_overlap, contacts);
+        else dem_pair_loop(w, contact, 0, 1, max_overlap, contacts);
+    } else if (periodic) dem_pair_loop(w, contact, 1, 0, max_overlap, contacts);
+    else dem_pair_loop(w, contact, 0, 0, max_overlap, contacts);
 }
 
 const dem_law dem_law_hertzSpringDashpot = {

@@ -55,7 +55,7 @@ static double sd_linear_time(const dem_time_pair *p)
 /* Spring-dashpot [S] 17-26; fscale = 1 (linear) or sqrt(delta/d) (Hertzian). */
 static inline void sd_force(const dem_pair *q, double dt, const double n[3], double delta,
                             double fscale, const double vc[3], double meff, double *h,
-                            double F[3], double ft[3], double *fel)
+                            double F[3], double ft[3], double *fel, double *fnout)
 {
     double vn = vc[0] * n[0] + vc[1] * n[1] + vc[2] * n[2];
     double vt[3] = {vc[0] - vn * n[0], vc[1] - vn * n[1], vc[2] - vn * n[2]};
@@ -85,6 +85,7 @@ static inline void sd_force(const dem_pair *q, double dt, const double n[3], dou
     }
     F[0] = fn * n[0] + ft[0]; F[1] = fn * n[1] + ft[1]; F[2] = fn * n[2] + ft[2];
     *fel = fel_;
+    *fnout = fn;
 }
 
 #endif
