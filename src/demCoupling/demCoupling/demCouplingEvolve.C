@@ -29,6 +29,54 @@ using namespace Foam::demTools;
 
 // * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
 
+// The particle data of one fluid step, indexed by the start index s (the
+// order of the core's arrays when the step begins; the core may re-sort its
+// storage inside dem_world_step, so later indices map back through the id)
+struct Foam::demCoupling::stepData
+{
+    scalar dt;
+    label nDem;
+    label n;
+    label nExtra;
+
+    // fluid fields of the last fluid step (cells) and their halo copies
+    const vectorField* Uc;
+    const vectorField* gradPc;
+    const vectorField* divTc;
+    List<vector> vsCellH;
+
+    // per particle: fluid values at the particle, forces and coefficients
+    List<vector> uF, fGP, fExch, fPart, divTauP;
+    scalarField epsP, muP, dragFac, Ksum, VpS;
+    List<int64_t> idStart;
+
+    // optional forces f'' (extraForces/): fluid vorticity and acceleration
+    // at the particles, the explicit impulse and the added mass per force
+    List<vector> vortP, DuDtP, vStart;
+    List<scalarField> maK;
+    List<List<vector>> impK;
+
+    stepData(const scalar dt, const label nDem, const label n, const label nExtra)
+    :
+        dt(dt), nDem(nDem), n(n), nExtra(nExtra),
+        Uc(nullptr), gradPc(nullptr), divTc(nullptr),
+        uF(n), fGP(n), fExch(n), fPart(n), divTauP(n),
+        epsP(n), muP(n), dragFac(n), Ksum(n, 0), VpS(n), idStart(n),
+        vortP(nExtra ? n : 0), DuDtP(nExtra ? n : 0), vStart(nExtra ? n : 0),
+        maK(nExtra, scalarField(n, 0)),
+        impK(nExtra, List<vector>(n, Zero))
+    {}
+
+    //- Start index of a particle id, -1 for one inserted during the step
+    label startOf(const int64_t id, const DynamicList<label>& startById) const
+    {
+        if (id < 0 || id >= startById.size()) return -1;
+        const label s = startById[id];
+        return (s >= 0 && s < n && idStart[s] == id) ? s : -1;
+    }
+};
+
+
 void Foam::demCoupling::evolve
 (
     const volVectorField& U,
@@ -45,56 +93,75 @@ void Foam::demCoupling::evolve
     const label nDem = subSteps(dt);
     nSubCycles_ = nDem;
 
-    // 1-2: positions at the start of the step (located by the last call).
-    // Per-particle data below are indexed by the start index s; the core
-    // may re-sort its storage inside dem_world_step, so the current index
-    // is mapped back to s through the particle id.
-    dem_arrays a = world_.arrays();
-    const label n = label(a.n_owned);
-
+    stepData sd(dt, nDem, label(world_.arrays().n_owned), extraForces_.size());
     const volVectorField gradPKin(fvc::grad(p));
-    const vectorField& Uc = U.primitiveField();
-    const vectorField& gradPc = gradPKin.primitiveField();
-    const vectorField& divTc = divTauKin.primitiveField();
+    sd.Uc = &U.primitiveField();
+    sd.gradPc = &gradPKin.primitiveField();
+    sd.divTc = &divTauKin.primitiveField();
+
+    // 1-2: the fluid at the particles' start positions (located and weighted
+    // by the last call)
+    sampleFluid(sd, U, nu);
+
+    // 3: DEM sub-steps with the drag re-evaluated every dragUpdateInterval
+    if (!subStep(sd))
+    {
+        ++nSteps_;
+        return;
+    }
+
+    // 4: exchange, eta, balance (start-of-step weights)
+    DynamicList<int64_t> inserted;
+    exchange(sd, inserted);
+
+    // 5: new positions -> voidage for the fluid step
+    startRamp(inserted);
+    locateAll();
+    computeWeights();
+    computeVoidage();
+
+    bed_.sample(world_.arrays(), eps_);
+    bed_.append();
+
+    ++nSteps_;
+    tCoupling_ +=
+        std::chrono::duration<scalar>
+        (
+            std::chrono::steady_clock::now() - tEvolve0
+        ).count()
+      - (tDem_ - tDem0) - (tComm_ - tComm0);
+
+    report(false);
+}
+
+
+void Foam::demCoupling::sampleFluid
+(
+    stepData& sd,
+    const volVectorField& U,
+    const volScalarField& nu
+)
+{
+    dem_arrays a = world_.arrays();
+    const label n = sd.n;
+    const vectorField& Uc = *sd.Uc;
+    const vectorField& gradPc = *sd.gradPc;
+    const vectorField& divTc = *sd.divTc;
     const scalarField& epsc = eps_.primitiveField();
     const scalarField& nuc = nu.primitiveField();
-    const scalarField& V = mesh_.V();
     const couplingFormulation& form = formulation_();
+    const label nExtra = sd.nExtra;
 
-    // optional forces f'' (extraForces/): fluid vorticity and acceleration
-    // at the particles, the explicit impulse and the added mass per force
-    const label nExtra = extraForces_.size();
     vectorField vortCell, DuDtCell;
     extraForceFields(U, vortCell, DuDtCell);
-    List<vector> vortP(nExtra ? n : 0), DuDtP(nExtra ? n : 0);
-    List<vector> vStart(nExtra ? n : 0);
-    List<scalarField> maK(nExtra, scalarField(n, 0));
-    List<List<vector>> impK(nExtra, List<vector>(n, Zero));
 
-    List<vector> uF(n), fGP(n), fExch(n), fPart(n), divTauP(n);
-    scalarField epsP(n), muP(n), dragFac(n), Ksum(n, 0);
-
-    // id -> start index
+    // id -> start index, and the ids by start index (a.id may be
+    // reordered later)
     for (label s = 0; s < n; ++s)
     {
         idSlot(startById_, a.id[s]) = s;
+        sd.idStart[s] = a.id[s];
     }
-    auto startIndex = [&](const int64_t id) -> label
-    {
-        if (id < 0 || id >= startById_.size()) return -1;
-        const label s = startById_[id];
-        return (s >= 0 && s < n && a.id[s] == id) ? s : -1;
-    };
-    // ids by start index (a.id may be reordered later)
-    List<int64_t> idStart(n);
-    for (label s = 0; s < n; ++s) idStart[s] = a.id[s];
-    auto startOf = [&](const int64_t id) -> label
-    {
-        if (id < 0 || id >= startById_.size()) return -1;
-        const label s = startById_[id];
-        return (s >= 0 && s < n && idStart[s] == id) ? s : -1;
-    };
-    (void)startIndex;
 
     // cell-mean particle velocity (for the cell-mean drag variant)
     const vectorField& vsCell = Up_.primitiveField();
@@ -103,10 +170,9 @@ void Foam::demCoupling::evolve
     // while an insertion ramp runs): the forces that scale with it, and
     // their share of the exchange, use the same volume, so that the
     // momentum exchange stays exact
-    scalarField VpS(n);
     for (label s = 0; s < n; ++s)
     {
-        VpS[s] =
+        sd.VpS[s] =
             rampWeight(a.id[s], voidageTime_)*4.0/3.0*pi*pow3(a.radius[s]);
     }
 
@@ -118,43 +184,52 @@ void Foam::demCoupling::evolve
     const List<scalar> nucH(map_.haloGet(nuc));
     const List<vector> vortH(nExtra ? map_.haloGet(vortCell) : List<vector>());
     const List<vector> DuDtH(nExtra ? map_.haloGet(DuDtCell) : List<vector>());
-    const List<vector> vsCellH
-    (
-        cellMeanDrag_ ? map_.haloGet(vsCell) : List<vector>()
-    );
+    if (cellMeanDrag_)
+    {
+        sd.vsCellH = map_.haloGet(vsCell);
+    }
 
     for (label s = 0; s < n; ++s)
     {
-        const scalar Vp = VpS[s];
-        uF[s] = map_.interp(s, Uc, UcH);
+        const scalar Vp = sd.VpS[s];
+        sd.uF[s] = map_.interp(s, Uc, UcH);
         const vector gp = rhof_*map_.interp(s, gradPc, gradPcH) + state_.G;
         const vector dtau = rhof_*map_.interp(s, divTc, divTcH);
-        epsP[s] = map_.interp(s, epsc, epscH);
-        muP[s] = rhof_*map_.interp(s, nuc, nucH);
-        dragFac[s] = form.dragFactor(epsP[s]);
-        fGP[s] = -Vp*gp;
-        divTauP[s] = Vp*dtau;
-        form.explicitForces(Vp, gp, dtau, rhof_, g_, fPart[s], fExch[s]);
-        setVec(a.force_ext, s, fPart[s]);
+        sd.epsP[s] = map_.interp(s, epsc, epscH);
+        sd.muP[s] = rhof_*map_.interp(s, nuc, nucH);
+        sd.dragFac[s] = form.dragFactor(sd.epsP[s]);
+        sd.fGP[s] = -Vp*gp;
+        sd.divTauP[s] = Vp*dtau;
+        form.explicitForces
+        (
+            Vp, gp, dtau, rhof_, g_, sd.fPart[s], sd.fExch[s]
+        );
+        setVec(a.force_ext, s, sd.fPart[s]);
         setVec(a.torque_ext, s, vector::zero);
         setVec(a.drag_impulse, s, vector::zero);
         scalar ma = 0;
         if (nExtra)
         {
-            vortP[s] = map_.interp(s, vortCell, vortH);
-            DuDtP[s] = map_.interp(s, DuDtCell, DuDtH);
-            vStart[s] = toVec(a.v, s);
+            sd.vortP[s] = map_.interp(s, vortCell, vortH);
+            sd.DuDtP[s] = map_.interp(s, DuDtCell, DuDtH);
+            sd.vStart[s] = toVec(a.v, s);
             forAll(extraForces_, k)
             {
-                maK[k][s] = dragFac[s]
-                   *extraForces_[k].addedMass(2*a.radius[s], rhof_, epsP[s]);
-                ma += maK[k][s];
+                sd.maK[k][s] = sd.dragFac[s]
+                   *extraForces_[k].addedMass(2*a.radius[s], rhof_, sd.epsP[s]);
+                ma += sd.maK[k][s];
             }
         }
         a.added_mass[s] = ma;
     }
+}
 
-    // 3: DEM sub-steps with drag re-evaluated every chunk
+
+bool Foam::demCoupling::subStep(stepData& sd)
+{
+    const label nDem = sd.nDem;
+    const label nExtra = sd.nExtra;
+    const vectorField& vsCell = Up_.primitiveField();
     const label chunk =
         dragUpdateInterval_ > 0 ? min(dragUpdateInterval_, nDem) : nDem;
 
@@ -162,10 +237,10 @@ void Foam::demCoupling::evolve
     while (done < nDem)
     {
         const label m = min(chunk, nDem - done);
-        a = world_.arrays();
+        dem_arrays a = world_.arrays();
         for (label j = 0; j < label(a.n_owned); ++j)
         {
-            const label s = startOf(a.id[j]);
+            const label s = sd.startOf(a.id[j], startById_);
             if (s < 0)
             {
                 // inserted during this fluid step: no drag until located
@@ -174,21 +249,21 @@ void Foam::demCoupling::evolve
                 continue;
             }
             const vector v(toVec(a.v, j));
-            vector slip = uF[s] - v;
-            vector uf = uF[s];
+            vector slip = sd.uF[s] - v;
+            vector uf = sd.uF[s];
             if (cellMeanDrag_)
             {
                 // [S] method 1: drag from the cell-mean particle velocity
-                const vector vs = map_.interp(s, vsCell, vsCellH);
-                slip = uF[s] - vs;
-                uf = uF[s] - vs + v;
+                const vector vs = map_.interp(s, vsCell, sd.vsCellH);
+                slip = sd.uF[s] - vs;
+                uf = sd.uF[s] - vs + v;
             }
             const scalar K =
-                drag_->K(2*a.radius[j], epsP[s], mag(slip), rhof_, muP[s])
-               *dragFac[s];
+                drag_->K(2*a.radius[j], sd.epsP[s], mag(slip), rhof_, sd.muP[s])
+               *sd.dragFac[s];
             a.drag_coeff[j] = K;
             setVec(a.fluid_velocity, j, uf);
-            Ksum[s] += K*m/nDem;
+            sd.Ksum[s] += K*m/nDem;
             if (nExtra)
             {
                 // explicit extra forces (times the set's factor), held
@@ -197,20 +272,20 @@ void Foam::demCoupling::evolve
                 st.d = 2*a.radius[j];
                 st.v = v;
                 st.omega = toVec(a.omega, j);
-                st.u = uF[s];
-                st.vorticity = vortP[s];
-                st.DuDt = DuDtP[s];
+                st.u = sd.uF[s];
+                st.vorticity = sd.vortP[s];
+                st.DuDt = sd.DuDtP[s];
                 st.rhof = rhof_;
-                st.muf = muP[s];
-                st.eps = epsP[s];
+                st.muf = sd.muP[s];
+                st.eps = sd.epsP[s];
                 vector fx(Zero);
                 forAll(extraForces_, k)
                 {
-                    const vector f = dragFac[s]*extraForces_[k].force(st);
-                    impK[k][s] += f*(m*demDt_);
+                    const vector f = sd.dragFac[s]*extraForces_[k].force(st);
+                    sd.impK[k][s] += f*(m*demDt_);
                     fx += f;
                 }
-                setVec(a.force_ext, j, fPart[s] + fx);
+                setVec(a.force_ext, j, sd.fPart[s] + fx);
             }
             if (frozen_)
             {
@@ -243,15 +318,31 @@ void Foam::demCoupling::evolve
                     failure_ = std::string("DEM core: ")
                       + dem_status_string(st) + ": " + world_.lastError();
                 }
-                ++nSteps_;
-                return;
+                return false;
             }
         }
         done += m;
     }
+    return true;
+}
 
-    // 4: exchange, eta, balance (start-of-step weights)
-    a = world_.arrays();
+
+void Foam::demCoupling::exchange
+(
+    const stepData& sd,
+    DynamicList<int64_t>& inserted
+)
+{
+    const scalar dt = sd.dt;
+    const label n = sd.n;
+    const label nExtra = sd.nExtra;
+    const vectorField& Uc = *sd.Uc;
+    const vectorField& gradPc = *sd.gradPc;
+    const vectorField& divTc = *sd.divTc;
+    const scalarField& V = mesh_.V();
+    const couplingFormulation& form = formulation_();
+
+    dem_arrays a = world_.arrays();
     const label nEnd = label(a.n_owned);
 
     vectorField Fc(mesh_.nCells(), Zero);
@@ -296,12 +387,11 @@ void Foam::demCoupling::evolve
         state_.fExtra[k].setSize(nEnd);
     }
     label nSeen = 0;
-    DynamicList<int64_t> inserted;
 
     for (label j = 0; j < nEnd; ++j)
     {
         state_.outIds[j] = a.id[j];
-        const label s = startOf(a.id[j]);
+        const label s = sd.startOf(a.id[j], startById_);
         if (s < 0)
         {
             inserted.append(a.id[j]);
@@ -310,7 +400,7 @@ void Foam::demCoupling::evolve
             continue;
         }
         ++nSeen;
-        const scalar Vp = VpS[s];
+        const scalar Vp = sd.VpS[s];
         const vector dragRate = toVec(a.drag_impulse, j)/dt;
         // extra forces: explicit impulse plus the implicit added-mass part
         // -m_a (v_end - v_start) (exactly what the core applied)
@@ -318,26 +408,26 @@ void Foam::demCoupling::evolve
         forAll(extraForces_, k)
         {
             state_.fExtra[k][j] =
-                (impK[k][s] - maK[k][s]*(toVec(a.v, j) - vStart[s]))/dt;
+                (sd.impK[k][s] - sd.maK[k][s]*(toVec(a.v, j) - sd.vStart[s]))/dt;
             extraRate += state_.fExtra[k][j];
         }
-        const vector fpf = dragRate + fPart[s] + extraRate;
+        const vector fpf = dragRate + sd.fPart[s] + extraRate;
         sumParticle += fpf;
         sumDrag += dragRate;
-        sumGradP += fGP[s];
-        sumTau += divTauP[s];
+        sumGradP += sd.fGP[s];
+        sumTau += sd.divTauP[s];
         sumMagParticle += mag(fpf);
-        const vector exch = dragRate + fExch[s] + extraRate;
+        const vector exch = dragRate + sd.fExch[s] + extraRate;
 
         // [Z]'s f_d + f'' of this particle (before the set's factor)
-        const vector fd = (dragRate + extraRate)/dragFac[s];
+        const vector fd = (dragRate + extraRate)/sd.dragFac[s];
         state_.fDrag[j] = dragRate;
-        state_.fGradP[j] = fGP[s];
+        state_.fGradP[j] = sd.fGP[s];
 
         // applicability index [Z 2.25-2.27], docs/theory.md section 6
-        const scalar e = epsP[s];
+        const scalar e = sd.epsP[s];
         const vector fResid =
-            fGP[s] - fd*(1 - e)/e + divTauP[s] + rhof_*Vp*g_;
+            sd.fGP[s] - fd*(1 - e)/e + sd.divTauP[s] + rhof_*Vp*g_;
         const vector fTotal = fd/e - rhof_*Vp*g_ + fResid;
         state_.etaP[j] = 100*mag(fResid)/max(mag(fTotal), VSMALL);
         // the bed average takes the particles that the fluid carries in
@@ -352,7 +442,7 @@ void Foam::demCoupling::evolve
         ++etaAll;
 
         map_.deposit(s, exch, Fc, FcHalo);
-        map_.deposit(s, Ksum[s], Kcell, KcellHalo);
+        map_.deposit(s, sd.Ksum[s], Kcell, KcellHalo);
         map_.deposit(s, state_.etaP[j], etaCell, etaCellHalo);
         map_.deposit(s, scalar(1), wCell, wCellHalo);
     }
@@ -411,25 +501,6 @@ void Foam::demCoupling::evolve
     balanceFluid_ = mag(sumFluid + sumParticle);
     balanceParticle_ = max(sumMagParticle, VSMALL);
     Ucoup_.primitiveFieldRef() = Uc;
-
-    // 5: new positions -> voidage for the fluid step
-    startRamp(inserted);
-    locateAll();
-    computeWeights();
-    computeVoidage();
-
-    bed_.sample(world_.arrays(), eps_);
-    bed_.append();
-
-    ++nSteps_;
-    tCoupling_ +=
-        std::chrono::duration<scalar>
-        (
-            std::chrono::steady_clock::now() - tEvolve0
-        ).count()
-      - (tDem_ - tDem0) - (tComm_ - tComm0);
-
-    report(false);
 }
 
 
