@@ -169,4 +169,16 @@ static DEM_ALWAYS_INLINE void dem_pair_loop(dem_world *w, dem_contact_fn one, co
     *ncont = nct;
 }
 
+/* A law's pair_forces with the scalar loop: the specialisation by
+ * periodicity and recording chosen once per force evaluation. */
+static DEM_ALWAYS_INLINE void dem_pair_loops(dem_world *w, dem_contact_fn one, int periodic,
+                                             double *maxov, size_t *ncont)
+{
+    if (w->crec_now) {  /* the recording loop (same arithmetic) */
+        if (periodic) dem_pair_loop(w, one, 1, 1, maxov, ncont);
+        else dem_pair_loop(w, one, 0, 1, maxov, ncont);
+    } else if (periodic) dem_pair_loop(w, one, 1, 0, maxov, ncont);
+    else dem_pair_loop(w, one, 0, 0, maxov, ncont);
+}
+
 #endif

@@ -61,4 +61,12 @@ extern const dem_law dem_law_linearSpringDashpot;
 extern const dem_law dem_law_hertzSpringDashpot;
 extern const dem_law dem_law_hertzMindlinNoSlip;
 
+/* The Hertz normal part shared by hertzMindlin and hertzMindlinNoSlip
+ * (laws/hertzMindlin.c): stiffness E, the e <-> c_n mapping, and the pair's
+ * E*, e, c_n = c_t, k43 and cn8. */
+double dem_hm_stiffness(const dem_material *m);
+void dem_hm_derived(const dem_material *m, double *e, double *c);
+void dem_hm_pair_normal(dem_pair *q, const dem_material *a, double ea, double ca,
+                        const dem_material *b, double eb, double cb);
+
 #endif

@@ -8,25 +8,32 @@
 #include "contactKernel.h"
 #include <string.h>
 
-static double stiffness(const dem_material *m) { return m->youngs_modulus; }
+double dem_hm_stiffness(const dem_material *m) { return m->youngs_modulus; }
 
 /* e from c_n or c_n from e: the dimensionless impact of restitution.c */
-static void derived(const dem_material *m, double *e, double *c)
+void dem_hm_derived(const dem_material *m, double *e, double *c)
 {
     if (m->restitution > 0) { *e = m->restitution; *c = dem_hm_damping(m->restitution); }
     else { *c = m->damping; *e = dem_hm_restitution(m->damping); }
 }
 
-static void pair(dem_pair *q, const dem_material *a, double ea, double ca, const dem_material *b,
-                 double eb, double cb, int like, int ra, int rb)
+/* a rigid side has 1/E = 0 in E* */
+void dem_hm_pair_normal(dem_pair *q, const dem_material *a, double ea, double ca,
+                        const dem_material *b, double eb, double cb)
 {
-    (void)like; (void)ra; (void)rb;  /* a rigid side has 1/E = 0 in E* */
     q->estar = 1.0 / ((1.0 - a->poisson_ratio * a->poisson_ratio) / a->youngs_modulus +
                       (1.0 - b->poisson_ratio * b->poisson_ratio) / b->youngs_modulus);
     q->e = fmin(ea, eb);
     q->cn = q->ct = (ea <= eb) ? ca : cb;
     q->k43 = 4.0 / 3.0 * q->estar;
     q->cn8 = q->cn * sqrt(8.0 * q->estar);
+}
+
+static void pair(dem_pair *q, const dem_material *a, double ea, double ca, const dem_material *b,
+                 double eb, double cb, int like, int ra, int rb)
+{
+    (void)like; (void)ra; (void)rb;
+    dem_hm_pair_normal(q, a, ea, ca, b, eb, cb);
     q->mumind = q->mu * q->mindlin;
     q->imumind = q->mumind > 0 ? 1.0 / q->mumind : 0.0;
     q->k43_mind = q->k43 / q->mindlin;
@@ -420,8 +427,8 @@ static void contact(const dem_pair *q, double dt, const double n[3], double delt
 const dem_law dem_law_hertzMindlin = {
     .name = "hertzMindlin",
     .stiffness_name = "youngs_modulus",
-    .stiffness = stiffness,
-    .derived = derived,
+    .stiffness = dem_hm_stiffness,
+    .derived = dem_hm_derived,
     .pair = pair,
     .contact_time = contact_time,
     .pair_forces = pair_loops_hm,

@@ -10,15 +10,6 @@
 \*---------------------------------------------------------------------------*/
 #include "contactKernel.h"
 
-static double stiffness(const dem_material *m) { return m->youngs_modulus; }
-
-/* the restitution <-> c_n mapping of hertzMindlin: the same normal force */
-static void derived(const dem_material *m, double *e, double *c)
-{
-    if (m->restitution > 0) { *e = m->restitution; *c = dem_hm_damping(m->restitution); }
-    else { *c = m->damping; *e = dem_hm_restitution(m->damping); }
-}
-
 /* shear modulus G = E / (2 (1 + nu)); a rigid side (E = inf) adds nothing */
 static double shear_part(const dem_material *m)
 {
@@ -30,12 +21,7 @@ static void pair(dem_pair *q, const dem_material *a, double ea, double ca, const
                  double eb, double cb, int like, int ra, int rb)
 {
     (void)like; (void)ra; (void)rb;
-    q->estar = 1.0 / ((1.0 - a->poisson_ratio * a->poisson_ratio) / a->youngs_modulus +
-                      (1.0 - b->poisson_ratio * b->poisson_ratio) / b->youngs_modulus);
-    q->e = fmin(ea, eb);
-    q->cn = q->ct = (ea <= eb) ? ca : cb;
-    q->k43 = 4.0 / 3.0 * q->estar;
-    q->cn8 = q->cn * sqrt(8.0 * q->estar);
+    dem_hm_pair_normal(q, a, ea, ca, b, eb, cb);  /* the normal part of hertzMindlin */
     q->g8 = 8.0 / (shear_part(a) + shear_part(b));
 }
 
@@ -84,18 +70,14 @@ static inline void contact(const dem_pair *q, double dt, const double n[3], doub
 
 static void pair_forces(dem_world *w, int periodic, double *max_overlap, size_t *contacts)
 {
-    if (w->crec_now) {  /* the recording loop (same arithmetic) */
-        if (periodic) dem_pair_loop(w, contact, 1, 1, max_overlap, contacts);
-        else dem_pair_loop(w, contact, 0, 1, max_overlap, contacts);
-    } else if (periodic) dem_pair_loop(w, contact, 1, 0, max_overlap, contacts);
-    else dem_pair_loop(w, contact, 0, 0, max_overlap, contacts);
+    dem_pair_loops(w, contact, periodic, max_overlap, contacts);
 }
 
 const dem_law dem_law_hertzMindlinNoSlip = {
     .name = "hertzMindlinNoSlip",
     .stiffness_name = "youngs_modulus",
-    .stiffness = stiffness,
-    .derived = derived,
+    .stiffness = dem_hm_stiffness,
+    .derived = dem_hm_derived,
     .pair = pair,
     .contact_time = contact_time,
     .pair_forces = pair_forces,

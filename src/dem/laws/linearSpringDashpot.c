@@ -23,11 +23,7 @@ static double contact_time(const dem_time_pair *p, double v_imp, int rayleigh, i
 
 static void pair_forces(dem_world *w, int periodic, double *max_overlap, size_t *contacts)
 {
-    if (w->crec_now) {  /* the recording loop (same arithmetic) */
-        if (periodic) dem_pair_loop(w, contact, 1, 1, max_overlap, contacts);
-        else dem_pair_loop(w, contact, 0, 1, max_overlap, contacts);
-    } else if (periodic) dem_pair_loop(w, contact, 1, 0, max_overlap, contacts);
-    else dem_pair_loop(w, contact, 0, 0, max_overlap, contacts);
+    dem_pair_loops(w, contact, periodic, max_overlap, contacts);
 }
 
 const dem_law dem_law_linearSpringDashpot = {
