@@ -138,7 +138,14 @@ Foam::demCoupling::demCoupling
     nSubCycles_(0),
     ghosts_
     (
-        world_, periodic_, boxLo_, boxHi_, inletBoxes_, inletRadius_, tComm_
+        world_, box_.periodic, box_.lo, box_.hi, inletBoxes_, inletRadius_,
+        tComm_
+    ),
+    decomposition_(mesh, world_, locator_, box_, tComm_),
+    cloud_
+    (
+        mesh, world_, locator_, box_, decomposition_, state_,
+        dict_.getOrDefault<label>("maxLostParticles", 0)
     ),
     driving_(dict_.found("periodicDriving")),
     UsTarget_(Zero),
@@ -181,7 +188,6 @@ Foam::demCoupling::demCoupling
 {
     readTraps_.release();
     failure_.clear();
-    maxLost_ = dict_.getOrDefault<label>("maxLostParticles", 0);
     snapBuf_ = nullptr;
     snapSize_ = 0;
     snapCapacity_ = 0;
@@ -202,9 +208,6 @@ Foam::demCoupling::demCoupling
     {
         (void)mesh_.tetBasePtIs();
     }
-    periodic_ = false;
-    boxLo_ = Zero;
-    boxHi_ = Zero;
     inletRadius_ = 0;
     tComm_ = 0;
 
@@ -254,7 +257,8 @@ Foam::demCoupling::demCoupling
         dem_world_set_time(world_, t0 - nSettle*demDt_), "dem_world_set_time"
     );
     addWalls();
-    addOutletsAndInlets();
+    cloud_.addOutlets(dict_);
+    addInlets();
 
     if (!restoreState(mesh.time().timePath()/"uniform", initial))
     {
@@ -274,7 +278,7 @@ Foam::demCoupling::demCoupling
         }
         // exactly the fluid's (the sum of the steps may differ by round-off)
         world_.check(dem_world_set_time(world_, t0), "dem_world_set_time");
-        distributeByCell();
+        decomposition_.distributeByCell();
     }
     else if (mag(dem_world_time(world_) - t0) > 0.5*demDt_)
     {
@@ -288,7 +292,7 @@ Foam::demCoupling::demCoupling
     if (checkOnly) return;
 
     eps_.oldTime();
-    locateAll();
+    cloud_.locate(failure_);
     computeWeights();
     computeVoidage();
     eps_.oldTime() == eps_;
@@ -337,8 +341,8 @@ void Foam::demCoupling::computeWeights()
     const dem_arrays a = world_.arrays();
     map_.compute
     (
-        voidage_(), label(a.n_owned), a.radius, host_,
-        [&](const label i) { return wrapped(a, i); }
+        voidage_(), label(a.n_owned), a.radius, cloud_.host(),
+        [&](const label i) { return box_.wrapped(a.x, i); }
     );
 }
 

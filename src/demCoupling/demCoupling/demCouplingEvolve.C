@@ -116,7 +116,7 @@ void Foam::demCoupling::evolve
 
     // 5: new positions -> voidage for the fluid step
     startRamp(inserted);
-    locateAll();
+    cloud_.locate(failure_);
     computeWeights();
     computeVoidage();
 

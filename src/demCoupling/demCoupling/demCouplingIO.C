@@ -72,12 +72,13 @@ void Foam::demCoupling::report(const bool full) const
             << endl;
     }
 
-    forAll(outletPatches_, k)
+    const labelList& outletPatches = cloud_.outletPatches();
+    forAll(outletPatches, k)
     {
         scalar mass = 0;
-        const label cnt = outletTotal(k, mass);
+        const label cnt = cloud_.outletTotal(k, mass);
         Info<< "demCoupling: outlet "
-            << mesh_.boundaryMesh()[outletPatches_[k]].name() << ": "
+            << mesh_.boundaryMesh()[outletPatches[k]].name() << ": "
             << cnt << " particles, " << mass << " kg" << endl;
     }
     // summed over the processors (the patches before the processor
@@ -106,23 +107,9 @@ void Foam::demCoupling::report(const bool full) const
         << (Pstream::parRun() ? " (most on one processor)" : "")
         << ", wall contacts "
         << returnReduce(label(st.wall_contacts), sumOp<label>()) << endl;
-    Info<< "demCoupling: lost particles in total " << lostTotal()
+    Info<< "demCoupling: lost particles in total " << cloud_.lostTotal()
         << " (global searches "
         << returnReduce(locator_.nGlobal(), sumOp<label>()) << ")" << endl;
-}
-
-
-Foam::label Foam::demCoupling::outletTotal(const label k, scalar& mass) const
-{
-    int64_t cnt = 0;
-    double m = 0;
-    world_.check
-    (
-        dem_world_outlet_totals(world_, outletIds_[k], &cnt, &m),
-        "dem_world_outlet_totals"
-    );
-    mass = returnReduce(scalar(m), sumOp<scalar>());
-    return returnReduce(label(cnt), sumOp<label>());
 }
 
 
@@ -137,7 +124,10 @@ void Foam::demCoupling::write() const
     passiveParticleCloud cloud(mesh_, cloudName, IDLList<passiveParticle>());
     for (label i = 0; i < n; ++i)
     {
-        cloud.addParticle(new passiveParticle(mesh_, wrapped(a, i), host_[i]));
+        cloud.addParticle
+        (
+            new passiveParticle(mesh_, box_.wrapped(a.x, i), cloud_.host()[i])
+        );
     }
 
     // per-particle results of the last coupling step, by id
@@ -231,7 +221,7 @@ void Foam::demCoupling::write() const
     // DEM state for restarts
     const fileName dir(mesh_.time().timePath()/"uniform");
     mkDir(dir);
-    const fileName state(stateFile(dir));
+    const fileName state(decomposition_.stateFile(dir));
     world_.check(dem_world_save(world_, state.c_str()), "dem_world_save");
     writeCouplingState(dir/"demCouplingState.bin");
 }
@@ -338,6 +328,32 @@ Foam::label Foam::demCoupling::resultsOf
     }
     return ids.size() - nFound;
 }
+
+bool Foam::demCoupling::restoreState(const fileName& dir, const bool initial)
+{
+    bool serialState = false;
+    if (!decomposition_.restore(dir, initial, serialState))
+    {
+        return false;
+    }
+    const fileName cpl(dir/"demCouplingState.bin");
+    if (!returnReduce(isFile(cpl), andOp<bool>()))
+    {
+        const fileName state
+        (
+            serialState ? dir/"demState.bin" : decomposition_.stateFile(dir)
+        );
+        FatalErrorInFunction
+            << "the start time " << dir.path() << " has the DEM state "
+            << state.name() << " but no " << cpl << " (the coupling's "
+            << "history: fluid velocity at the particles, time averages), "
+            << "without which the restart is not exact; start from a time "
+            << "written completely by demFoam" << exit(FatalError);
+    }
+    readCouplingState(cpl, serialState);
+    return true;
+}
+
 
 // The coupling's own history for an exact restart: the fluid velocity of
 // the last step (du/dt of the extra forces), the periodic driving

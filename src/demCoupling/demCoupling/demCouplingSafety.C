@@ -85,7 +85,7 @@ void Foam::demCoupling::restoreCheckpoint()
 
     // the checkpointed particles were all located: nothing leaves here
     const std::string why(failure_);
-    locateAll();
+    cloud_.locate(failure_);
     computeWeights();
     computeVoidage();
     failure_ = why;
@@ -212,12 +212,13 @@ void Foam::demCoupling::progress(const bool force)
     Pstream::scatter(nInserted);
     const scalar maxOverlap =
         returnReduce(scalar(st.max_overlap_ratio), maxOp<scalar>());
-    const label lost = lostTotal();
-    List<label> outCounts(outletPatches_.size());
-    forAll(outletPatches_, k)
+    const label lost = cloud_.lostTotal();
+    const labelList& outletPatches = cloud_.outletPatches();
+    List<label> outCounts(outletPatches.size());
+    forAll(outletPatches, k)
     {
         scalar mass = 0;
-        outCounts[k] = outletTotal(k, mass);
+        outCounts[k] = cloud_.outletTotal(k, mass);
     }
 
     const scalar tComm = returnReduce(tComm_, maxOp<scalar>());
@@ -234,12 +235,12 @@ void Foam::demCoupling::progress(const bool force)
         << hms(eta).c_str()
         << ", particles " << nAll
         << " (inserted " << nInserted << ", removed";
-    forAll(outletPatches_, k)
+    forAll(outletPatches, k)
     {
-        os  << " " << mesh_.boundaryMesh()[outletPatches_[k]].name() << " "
+        os  << " " << mesh_.boundaryMesh()[outletPatches[k]].name() << " "
             << outCounts[k];
     }
-    if (outletPatches_.empty()) os << " 0";
+    if (outletPatches.empty()) os << " 0";
     os  << ", lost " << lost << ")"
         << ", max overlap " << 0.001*std::round(1e5*maxOverlap)
         << " % of d"
