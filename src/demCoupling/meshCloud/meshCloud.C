@@ -3,6 +3,12 @@
   Copyright (C) 2026 the demFoam authors
   License: GPL-3.0-or-later (see LICENSE)
 
+Description
+    Locating the particles (steps 1 and 5 of demCoupling::evolve()),
+    removing those outside the mesh, booked on their outlet patch or
+    counted as lost, and the records of the removed particles
+    (postProcessing/demOutlets).
+
 \*---------------------------------------------------------------------------*/
 
 #include "meshCloud.H"
