@@ -130,30 +130,31 @@ Foam::demCoupling::demCoupling
     cellMeanDrag_(false),
     frozen_(dict_.getOrDefault<bool>("frozen", false)),
     epsMin_(dict_.getOrDefault<scalar>("epsMin", 0.1)),
-    etaWarning_(dict_.getOrDefault<scalar>("etaWarning", 20.0)),
     rampTime_(dict_.getOrDefault<scalar>("insertionRampTime", 0)),
     voidageTime_(mesh.time().value()),
     demDt_(0),
     dragUpdateInterval_(0),
     nSubCycles_(0),
+    diag_
+    (
+        mesh, world_, locator_, box_, state_, formulation_(), extraForces_,
+        cloud_, map_, bed_, dict_
+    ),
     ghosts_
     (
-        world_, periodic_, boxLo_, boxHi_, inletBoxes_, inletRadius_, tComm_
+        world_, box_.periodic, box_.lo, box_.hi, inletBoxes_, inletRadius_,
+        diag_.time.comm
+    ),
+    decomposition_(mesh, world_, locator_, box_, diag_.time.comm),
+    cloud_
+    (
+        mesh, world_, locator_, box_, decomposition_, state_,
+        dict_.getOrDefault<label>("maxLostParticles", 0)
     ),
     driving_(dict_.found("periodicDriving")),
     UsTarget_(Zero),
     drivingRelax_(0.2),
-    map_(mesh, locator_, tComm_),
-    balanceFluid_(0),
-    balanceParticle_(0),
-    balanceFluidVec_(Zero),
-    balanceParticleVec_(Zero),
-    sumDrag_(Zero),
-    sumGradP_(Zero),
-    sumTau_(Zero),
-    solidVolumeMesh_(0),
-    solidVolumeParticles_(0),
-    solidVolumeRamp_(0),
+    map_(mesh, locator_, diag_.time.comm),
     eps_
     (
         fieldIO(mesh, "eps", true),
@@ -181,18 +182,11 @@ Foam::demCoupling::demCoupling
 {
     readTraps_.release();
     failure_.clear();
-    maxLost_ = dict_.getOrDefault<label>("maxLostParticles", 0);
     snapBuf_ = nullptr;
     snapSize_ = 0;
     snapCapacity_ = 0;
-    wallStart_ = std::chrono::steady_clock::now();
-    wallLastProgress_ = 0;
-    tDem_ = tCoupling_ = tFluid_ = 0;
-    progressInterval_ = dict_.getOrDefault<scalar>("progressInterval", 60);
-    progressSteps_ = dict_.getOrDefault<label>("progressSteps", 0);
     nSteps_ = 0;
     writeRequested_ = -1;
-    startTime_ = mesh.time().value();
     injectParticleNaN_ = injectedStep("particleNaN");
 
     // decomposed: the mesh's tet base points are computed with
@@ -202,11 +196,7 @@ Foam::demCoupling::demCoupling
     {
         (void)mesh_.tetBasePtIs();
     }
-    periodic_ = false;
-    boxLo_ = Zero;
-    boxHi_ = Zero;
     inletRadius_ = 0;
-    tComm_ = 0;
 
     const word scheme(dict_.getOrDefault<word>("dragScheme", "perParticle"));
     if (scheme == "cellMean")
@@ -254,7 +244,8 @@ Foam::demCoupling::demCoupling
         dem_world_set_time(world_, t0 - nSettle*demDt_), "dem_world_set_time"
     );
     addWalls();
-    addOutletsAndInlets();
+    cloud_.addOutlets(dict_);
+    addInlets();
 
     if (!restoreState(mesh.time().timePath()/"uniform", initial))
     {
@@ -274,7 +265,7 @@ Foam::demCoupling::demCoupling
         }
         // exactly the fluid's (the sum of the steps may differ by round-off)
         world_.check(dem_world_set_time(world_, t0), "dem_world_set_time");
-        distributeByCell();
+        decomposition_.distributeByCell();
     }
     else if (mag(dem_world_time(world_) - t0) > 0.5*demDt_)
     {
@@ -288,7 +279,7 @@ Foam::demCoupling::demCoupling
     if (checkOnly) return;
 
     eps_.oldTime();
-    locateAll();
+    cloud_.locate(failure_);
     computeWeights();
     computeVoidage();
     eps_.oldTime() == eps_;
@@ -306,11 +297,11 @@ Foam::demCoupling::demCoupling
         << "formulation " << dict_.get<word>("formulation")
         << ", drag " << dict_.get<word>("dragModel")
         << (cellMeanDrag_ ? " (cell-mean)" : " (per particle)")
-        << ", solid volume " << solidVolumeParticles_ << " m3" << nl << endl;
+        << ", solid volume " << diag_.solid.particles << " m3" << nl << endl;
 
     // the progress estimate counts the coupled steps only (not the
     // settling and set-up before them)
-    wallStart_ = std::chrono::steady_clock::now();
+    diag_.startClock();
 }
 
 
@@ -329,116 +320,6 @@ Foam::label Foam::demCoupling::subSteps(const scalar dt) const
             << exit(FatalIOError);
     }
     return n;
-}
-
-
-void Foam::demCoupling::computeWeights()
-{
-    const dem_arrays a = world_.arrays();
-    map_.compute
-    (
-        voidage_(), label(a.n_owned), a.radius, host_,
-        [&](const label i) { return wrapped(a, i); }
-    );
-}
-
-
-void Foam::demCoupling::computeVoidage()
-{
-    dem_arrays a = world_.arrays();
-    const label n = label(a.n_owned);
-    const scalarField& V = mesh_.V();
-
-    // insertion ramp: a particle inserted at t0 counts with the weight
-    // (t - t0)/rampTime_ until rampTime_ has passed, so that the fluid
-    // sees its volume arrive over rampTime_ instead of in one step
-    const scalar tNow = mesh_.time().value();
-    for (auto it = state_.rampStart.begin(); it != state_.rampStart.end(); )
-    {
-        if (tNow - it->second >= rampTime_) it = state_.rampStart.erase(it);
-        else ++it;
-    }
-    voidageTime_ = tNow;
-
-    scalarField solid(mesh_.nCells(), 0);
-    vectorField mom(mesh_.nCells(), Zero);
-    const label nHalo = map_.nHalo();
-    scalarField solidHalo(nHalo, 0);
-    vectorField momHalo(nHalo, Zero);
-    solidVolumeParticles_ = 0;
-    solidVolumeRamp_ = 0;
-    for (label i = 0; i < n; ++i)
-    {
-        const scalar V1 = 4.0/3.0*pi*pow3(a.radius[i]);
-        const scalar Vp = rampWeight(a.id[i], tNow)*V1;
-        solidVolumeParticles_ += V1;
-        solidVolumeRamp_ += V1 - Vp;
-        map_.deposit(i, Vp, solid, solidHalo);
-        map_.deposit(i, Vp*vector(toVec(a.v, i)), mom, momHalo);
-    }
-    map_.haloAdd(solid, solidHalo);
-    map_.haloAdd(mom, momHalo);
-    solidVolumeMesh_ = gSum(solid);
-    reduce(solidVolumeParticles_, sumOp<scalar>());
-    reduce(solidVolumeRamp_, sumOp<scalar>());
-
-    epsRaw_.primitiveFieldRef() = 1.0 - solid/V;
-    eps_.primitiveFieldRef() = max(epsRaw_.primitiveField(), epsMin_);
-    eps_.correctBoundaryConditions();
-
-    forAll(mom, c)
-    {
-        Up_[c] = solid[c] > 0 ? mom[c]/solid[c] : vector::zero;
-    }
-    Up_.correctBoundaryConditions();
-
-    const dimensionedScalar one("one", dimless, 1.0);
-    if (formulation_->pressureTimesVoidage()) pCoeff_ = eps_; else pCoeff_ = one;
-    if (formulation_->viscousTimesVoidage()) tauCoeff_ = eps_; else tauCoeff_ = one;
-}
-
-
-Foam::scalar Foam::demCoupling::rampWeight
-(
-    const int64_t id,
-    const scalar t
-) const
-{
-    if (state_.rampStart.empty())
-    {
-        return 1;
-    }
-    const auto it = state_.rampStart.find(id);
-    return
-        it == state_.rampStart.end()
-      ? 1
-      : min(max(t - it->second, 0)/rampTime_, 1);
-}
-
-
-void Foam::demCoupling::startRamp(const DynamicList<int64_t>& inserted)
-{
-    if (rampTime_ <= 0)
-    {
-        return;
-    }
-    // (decomposed: the master inserts; new particles may migrate to another
-    // processor before their ramp ends, so every processor keeps all ids)
-    List<List<int64_t>> all(Pstream::nProcs());
-    all[Pstream::myProcNo()] = inserted;
-    if (Pstream::parRun())
-    {
-        Pstream::gatherList(all);
-        Pstream::scatterList(all);
-    }
-    const scalar t0 = mesh_.time().value() - mesh_.time().deltaTValue();
-    for (const List<int64_t>& ids : all)
-    {
-        for (const int64_t id : ids)
-        {
-            state_.rampStart[id] = t0;
-        }
-    }
 }
 
 

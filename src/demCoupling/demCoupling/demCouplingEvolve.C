@@ -86,8 +86,8 @@ void Foam::demCoupling::evolve
 )
 {
     const auto tEvolve0 = std::chrono::steady_clock::now();
-    const scalar tDem0 = tDem_;
-    const scalar tComm0 = tComm_;
+    const scalar tDem0 = diag_.time.dem;
+    const scalar tComm0 = diag_.time.comm;
 
     const scalar dt = mesh_.time().deltaTValue();
     const label nDem = subSteps(dt);
@@ -116,7 +116,7 @@ void Foam::demCoupling::evolve
 
     // 5: new positions -> voidage for the fluid step
     startRamp(inserted);
-    locateAll();
+    cloud_.locate(failure_);
     computeWeights();
     computeVoidage();
 
@@ -124,12 +124,12 @@ void Foam::demCoupling::evolve
     bed_.append();
 
     ++nSteps_;
-    tCoupling_ +=
+    diag_.time.coupling +=
         std::chrono::duration<scalar>
         (
             std::chrono::steady_clock::now() - tEvolve0
         ).count()
-      - (tDem_ - tDem0) - (tComm_ - tComm0);
+      - (diag_.time.dem - tDem0) - (diag_.time.comm - tComm0);
 
     report(false);
 }
@@ -302,14 +302,14 @@ bool Foam::demCoupling::subStep(stepData& sd)
                 a.v[0] = std::numeric_limits<double>::quiet_NaN();
             }
             const auto t0 = std::chrono::steady_clock::now();
-            const scalar tCommStep0 = tComm_;
+            const scalar tCommStep0 = diag_.time.comm;
             const dem_status st =
                 Pstream::parRun() ? ghosts_.step(m, failure_) : world_.tryStep(m);
-            tDem_ += std::chrono::duration<scalar>
+            diag_.time.dem += std::chrono::duration<scalar>
             (
                 std::chrono::steady_clock::now() - t0
             ).count()
-              - (tComm_ - tCommStep0);
+              - (diag_.time.comm - tCommStep0);
             if (st != DEM_OK)
             {
                 // (decomposed: set by processorGhosts::step, naming the processor)
@@ -493,13 +493,13 @@ void Foam::demCoupling::exchange
         eta_[c] = wCell[c] > 0 ? etaCell[c]/wCell[c] : 0;
     }
     reduce(sumFluid, sumOp<vector>());
-    sumDrag_ = sumDrag;
-    sumGradP_ = sumGradP;
-    sumTau_ = sumTau;
-    balanceFluidVec_ = sumFluid;
-    balanceParticleVec_ = sumParticle;
-    balanceFluid_ = mag(sumFluid + sumParticle);
-    balanceParticle_ = max(sumMagParticle, VSMALL);
+    diag_.balance.sumDrag = sumDrag;
+    diag_.balance.sumGradP = sumGradP;
+    diag_.balance.sumTau = sumTau;
+    diag_.balance.fluidVec = sumFluid;
+    diag_.balance.particleVec = sumParticle;
+    diag_.balance.fluid = mag(sumFluid + sumParticle);
+    diag_.balance.particle = max(sumMagParticle, VSMALL);
     Ucoup_.primitiveFieldRef() = Uc;
 }
 

@@ -1,343 +1,67 @@
 /*---------------------------------------------------------------------------*\
-  demFoam: CFD-DEM for OpenFOAM
+  demFoam
   Copyright (C) 2026 the demFoam authors
   License: GPL-3.0-or-later (see LICENSE)
+
+Description
+    Output at write times and the restart of a run: the report and the
+    particle cloud (couplingDiagnostics), the DEM state (one file per
+    processor, particleDecomposition::stateFile) and the coupling's own
+    history (uniform/demCouplingState.bin), and reading both back.
+
 \*---------------------------------------------------------------------------*/
 
 #include "demCoupling.H"
-#include <fstream>
-#include "passiveParticleCloud.H"
-#include "IOField.H"
-#include "Map.H"
-#include "PstreamBuffers.H"
 #include "OSspecific.H"
-#include "mathematicalConstants.H"
+#include <fstream>
+
+// * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
 
 void Foam::demCoupling::report(const bool full) const
 {
-    // (before the first step both are 0)
-    const scalar rel =
-        balanceParticle_ > 0 ? balanceFluid_/balanceParticle_ : scalar(0);
-    Info<< "demCoupling: particles "
-        << returnReduce(label(dem_world_count(world_)), sumOp<label>())
-        << ", DEM steps " << nSubCycles_
-        << ", momentum balance: fluid " << balanceFluidVec_
-        << " particles " << balanceParticleVec_
-        << " relErr " << rel << endl;
-
-    if (!full) return;
-
-    Info<< "demCoupling: sum of particle drag " << sumDrag_
-        << ", of pressure-gradient forces " << sumGradP_
-        << ", of viscous forces " << sumTau_ << endl;
-
-    // (mesh + the part still ramping in = particles)
-    Info<< "demCoupling: solid volume: mesh " << solidVolumeMesh_
-        << " particles " << solidVolumeParticles_
-        << " relDiff "
-        << mag(solidVolumeMesh_ + solidVolumeRamp_ - solidVolumeParticles_)
-          /max(solidVolumeParticles_, VSMALL);
-    if (rampTime_ > 0)
-    {
-        Info<< " (ramping in " << solidVolumeRamp_ << ", "
-            << label(state_.rampStart.size()) << " particles)";
-    }
-    Info<< nl;
-    bed_.report();
-    if (state_.bedEta.n)
-    {
-        Info<< "demCoupling: bed-average eta " << state_.bedEta.mean << " % ("
-            << state_.bedEta.n << " of " << state_.bedEta.all << " particles: those "
-            << "whose fluid force is at least " << 100*etaMinForceRatio
-            << " % of their weight)" << endl;
-    }
-    else
-    {
-        Info<< "demCoupling: bed-average eta: none (no particle's fluid "
-            << "force is " << 100*etaMinForceRatio << " % of its weight)"
-            << endl;
-    }
-
-    if
-    (
-        formulation_->assumesNoFluidAcceleration()
-     && state_.bedEta.n
-     && state_.bedEta.mean > etaWarning_
-    )
-    {
-        WarningInFunction
-            << "set III with bed-average eta " << state_.bedEta.mean
-            << " % above etaWarning " << etaWarning_ << " %: set III assumes "
-            << "negligible fluid acceleration ([Z] 2.10); use setI or setII"
-            << endl;
-    }
-
-    forAll(outletPatches_, k)
-    {
-        scalar mass = 0;
-        const label cnt = outletTotal(k, mass);
-        Info<< "demCoupling: outlet "
-            << mesh_.boundaryMesh()[outletPatches_[k]].name() << ": "
-            << cnt << " particles, " << mass << " kg" << endl;
-    }
-    // summed over the processors (the patches before the processor
-    // patches are the same on all; exits through processor patches are
-    // booked as unknown)
-    labelList lost
-    (
-        SubList<label>(state_.lostPerPatch, mesh_.boundaryMesh().nNonProcessor())
-    );
-    Pstream::listCombineGather(lost, plusEqOp<label>());
-    forAll(lost, patchi)
-    {
-        if (lost[patchi])
-        {
-            Info<< "demCoupling: lost through "
-                << mesh_.boundaryMesh()[patchi].name() << ": "
-                << lost[patchi] << endl;
-        }
-    }
-    // list builds and wall contacts of the last force evaluation (the
-    // restart tests check that their window has both)
-    dem_stats st;
-    world_.check(dem_world_stats(world_, &st), "dem_world_stats");
-    Info<< "demCoupling: DEM neighbour-list builds "
-        << returnReduce(label(st.list_builds), maxOp<label>())
-        << (Pstream::parRun() ? " (most on one processor)" : "")
-        << ", wall contacts "
-        << returnReduce(label(st.wall_contacts), sumOp<label>()) << endl;
-    Info<< "demCoupling: lost particles in total " << lostTotal()
-        << " (global searches "
-        << returnReduce(locator_.nGlobal(), sumOp<label>()) << ")" << endl;
-}
-
-
-Foam::label Foam::demCoupling::outletTotal(const label k, scalar& mass) const
-{
-    int64_t cnt = 0;
-    double m = 0;
-    world_.check
-    (
-        dem_world_outlet_totals(world_, outletIds_[k], &cnt, &m),
-        "dem_world_outlet_totals"
-    );
-    mass = returnReduce(scalar(m), sumOp<scalar>());
-    return returnReduce(label(cnt), sumOp<label>());
+    diag_.report(full, nSubCycles_);
 }
 
 
 void Foam::demCoupling::write() const
 {
     report(true);
-
-    const dem_arrays a = world_.arrays();
-    const label n = label(a.n_owned);
-    const word cloudName("demCloud");
-
-    passiveParticleCloud cloud(mesh_, cloudName, IDLList<passiveParticle>());
-    for (label i = 0; i < n; ++i)
-    {
-        cloud.addParticle(new passiveParticle(mesh_, wrapped(a, i), host_[i]));
-    }
-
-    // per-particle results of the last coupling step, by id
-    Map<label> outIndex(2*state_.outIds.size() + 1);
-    forAll(state_.outIds, j)
-    {
-        outIndex.insert(label(state_.outIds[j]), j);
-    }
-
-    IOField<scalar> d(cloud.fieldIOobject("d", IOobject::NO_READ), n);
-    IOField<scalar> rho(cloud.fieldIOobject("rho", IOobject::NO_READ), n);
-    IOField<vector> U(cloud.fieldIOobject("U", IOobject::NO_READ), n);
-    IOField<vector> omega(cloud.fieldIOobject("omega", IOobject::NO_READ), n);
-    IOField<vector> Fdrag(cloud.fieldIOobject("Fdrag", IOobject::NO_READ), n);
-    IOField<vector> FgradP(cloud.fieldIOobject("FgradP", IOobject::NO_READ), n);
-    IOField<scalar> eta(cloud.fieldIOobject("eta", IOobject::NO_READ), n);
-    IOField<label> coordination
-    (
-        cloud.fieldIOobject("coordination", IOobject::NO_READ), n
-    );
-    IOField<label> id(cloud.fieldIOobject("id", IOobject::NO_READ), n);
-
-    // Results of the last coupling step, by id.  In a decomposed run a
-    // particle that changed processor after that step (section 5 of
-    // evolve: locate, then migrate) has them on the processor it left:
-    // they are fetched from there (collective).  A serial run has all.
-    // A particle without results on any processor would be a defect: it
-    // keeps zeros and coordination -1, and the log says so.
-    Fdrag = Zero;
-    FgradP = Zero;
-    eta = 0;
-    coordination = -1;
-    List<vectorField> Fextra(extraForces_.size(), vectorField(n, Zero));
-    DynamicList<label> missing;
-    for (label i = 0; i < n; ++i)
-    {
-        d[i] = 2*a.radius[i];
-        rho[i] = a.density[i];
-        U[i] = vector(a.v[3*i], a.v[3*i+1], a.v[3*i+2]);
-        omega[i] = vector(a.omega[3*i], a.omega[3*i+1], a.omega[3*i+2]);
-        id[i] = label(a.id[i]);
-        const auto iter = outIndex.cfind(id[i]);
-        if (!iter.found())
-        {
-            missing.append(i);
-            continue;
-        }
-        Fdrag[i] = state_.fDrag[*iter];
-        FgradP[i] = state_.fGradP[*iter];
-        eta[i] = state_.etaP[*iter];
-        coordination[i] = state_.coordP[*iter];
-        forAll(Fextra, k)
-        {
-            Fextra[k][i] = state_.fExtra[k][*iter];
-        }
-    }
-
-    label nMissing = missing.size();
-    if (Pstream::parRun() && returnReduce(nMissing, sumOp<label>()))
-    {
-        nMissing = resultsOf
-        (
-            outIndex, missing, id, Fdrag, FgradP, eta, coordination, Fextra
-        );
-    }
-    if (nMissing)
-    {
-        Pout<< "demCoupling: " << nMissing << " particles have no results of "
-            << "the last coupling step on any processor: written with Fdrag, "
-            << "FgradP, eta 0 and coordination -1" << endl;
-    }
-
-    cloud.write();
-    if (n)
-    {
-        d.write(); rho.write(); U.write(); omega.write(); Fdrag.write();
-        FgradP.write(); eta.write(); coordination.write(); id.write();
-    }
-
-    // extra forces f'' (extraForces): F<type>, time average over the step
-    forAll(extraForces_, k)
-    {
-        IOField<vector> f
-        (
-            cloud.fieldIOobject("F" + extraForces_[k].type(), IOobject::NO_READ),
-            Fextra[k]
-        );
-        if (n) f.write();
-    }
+    diag_.writeCloud();
 
     // DEM state for restarts
     const fileName dir(mesh_.time().timePath()/"uniform");
     mkDir(dir);
-    const fileName state(stateFile(dir));
+    const fileName state(decomposition_.stateFile(dir));
     world_.check(dem_world_save(world_, state.c_str()), "dem_world_save");
     writeCouplingState(dir/"demCouplingState.bin");
 }
 
 
-// Results of the last coupling step of the particles slots (indices into
-// id and the output fields) from the processors that held them then
-// (outIndex: this processor's index of state_.outIds by id); returns how many
-// no processor had.  Collective: every processor calls it with its own
-// request (possibly empty).
-Foam::label Foam::demCoupling::resultsOf
-(
-    const Map<label>& outIndex,
-    const labelUList& slots,
-    const labelUList& id,
-    vectorField& Fdrag,
-    vectorField& FgradP,
-    scalarField& eta,
-    labelList& coordination,
-    List<vectorField>& Fextra
-) const
+bool Foam::demCoupling::restoreState(const fileName& dir, const bool initial)
 {
-    labelList ids(slots.size());
-    forAll(slots, m)
+    bool serialState = false;
+    if (!decomposition_.restore(dir, initial, serialState))
     {
-        ids[m] = id[slots[m]];
+        return false;
     }
-    const label nProcs = Pstream::nProcs();
-    const label me = Pstream::myProcNo();
-    List<labelList> wanted(nProcs);
-    wanted[me] = ids;
-    Pstream::gatherList(wanted);
-    Pstream::scatterList(wanted);
-
-    const label nExtra = extraForces_.size();
-
-    PstreamBuffers pBufs(Pstream::commsTypes::nonBlocking);
-    for (label proci = 0; proci < nProcs; ++proci)
+    const fileName cpl(dir/"demCouplingState.bin");
+    if (!returnReduce(isFile(cpl), andOp<bool>()))
     {
-        if (proci == me) continue;
-        DynamicList<label> aIds, aCo;
-        DynamicList<vector> aFd, aFgp;
-        DynamicList<scalar> aEt;
-        List<DynamicList<vector>> aFx(nExtra);
-        for (const label pid : wanted[proci])
-        {
-            const auto iter = outIndex.cfind(pid);
-            if (!iter.found()) continue;
-            const label j = *iter;
-            aIds.append(pid);
-            aFd.append(state_.fDrag[j]);
-            aFgp.append(state_.fGradP[j]);
-            aEt.append(state_.etaP[j]);
-            aCo.append(state_.coordP[j]);
-            forAll(aFx, k)
-            {
-                aFx[k].append(state_.fExtra[k][j]);
-            }
-        }
-        UOPstream os(proci, pBufs);
-        os << aIds << aFd << aFgp << aEt << aCo;
-        forAll(aFx, k)
-        {
-            os << aFx[k];
-        }
+        const fileName state
+        (
+            serialState ? dir/"demState.bin" : decomposition_.stateFile(dir)
+        );
+        FatalErrorInFunction
+            << "the start time " << dir.path() << " has the DEM state "
+            << state.name() << " but no " << cpl << " (the coupling's "
+            << "history: fluid velocity at the particles, time averages), "
+            << "without which the restart is not exact; start from a time "
+            << "written completely by demFoam" << exit(FatalError);
     }
-    pBufs.finishedSends();
-
-    Map<label> pos(2*ids.size() + 1);
-    forAll(ids, m)
-    {
-        pos.insert(ids[m], m);
-    }
-    label nFound = 0;
-    for (label proci = 0; proci < nProcs; ++proci)
-    {
-        if (proci == me) continue;
-        UIPstream is(proci, pBufs);
-        labelList aIds, aCo;
-        List<vector> aFd, aFgp;
-        scalarList aEt;
-        is >> aIds >> aFd >> aFgp >> aEt >> aCo;
-        List<List<vector>> aFx(nExtra);
-        forAll(aFx, k)
-        {
-            is >> aFx[k];
-        }
-        forAll(aIds, r)
-        {
-            const auto iter = pos.cfind(aIds[r]);
-            if (!iter.found()) continue;
-            const label m = *iter;
-            const label i = slots[m];
-            Fdrag[i] = aFd[r];
-            FgradP[i] = aFgp[r];
-            eta[i] = aEt[r];
-            coordination[i] = aCo[r];
-            forAll(Fextra, k)
-            {
-                Fextra[k][i] = aFx[k][r];
-            }
-            ++nFound;
-        }
-    }
-    return ids.size() - nFound;
+    readCouplingState(cpl, serialState);
+    return true;
 }
+
 
 // The coupling's own history for an exact restart: the fluid velocity of
 // the last step (du/dt of the extra forces), the periodic driving

@@ -11,8 +11,9 @@ Description
         state, runaway overlap, lost particles, non-finite fluid) can be
         undone and the last good state written (demFoam writeLastGood.H);
       - nonFinite(): scan of the fluid state;
+      - settle(): the DEM alone before the start time, with progress lines;
       - progress(): one log line at progressInterval (wall seconds) or every
-        progressSteps fluid steps.
+        progressSteps fluid steps (couplingDiagnostics).
 
 \*---------------------------------------------------------------------------*/
 
@@ -20,21 +21,6 @@ Description
 #include "OStringStream.H"
 #include <cmath>
 #include <cstdlib>
-
-namespace
-{
-    std::string hms(const Foam::scalar s)
-    {
-        const long t = long(s + 0.5);
-        char buf[32];
-        std::snprintf
-        (
-            buf, sizeof buf, "%ld:%02ld:%02ld", t/3600, (t/60) % 60, t % 60
-        );
-        return buf;
-    }
-}
-
 
 Foam::demCoupling::~demCoupling()
 {
@@ -58,7 +44,7 @@ void Foam::demCoupling::checkpoint()
     snapScalar_.setSize(2);
     snapScalar_[0] = Kc_.primitiveField();
     snapScalar_[1] = eta_.primitiveField();
-    tCoupling_ += std::chrono::duration<scalar>
+    diag_.time.coupling += std::chrono::duration<scalar>
     (
         std::chrono::steady_clock::now() - t0
     ).count();
@@ -85,7 +71,7 @@ void Foam::demCoupling::restoreCheckpoint()
 
     // the checkpointed particles were all located: nothing leaves here
     const std::string why(failure_);
-    locateAll();
+    cloud_.locate(failure_);
     computeWeights();
     computeVoidage();
     failure_ = why;
@@ -160,101 +146,14 @@ void Foam::demCoupling::settle(const int64_t nSettle)
         const int64_t m = std::min(piece, nSettle - done);
         world_.step(m, "dem_world_step (settling, before the fluid starts)");
         done += m;
-        const scalar wall = std::chrono::duration<scalar>
-        (
-            std::chrono::steady_clock::now() - w0
-        ).count();
-        bool due = done < nSettle && wall - wallLast >= progressInterval_;
-        Pstream::scatter(due);
-        if (due)
-        {
-            wallLast = wall;
-            Info<< "progress: settling (DEM only), t = "
-                << dem_world_time(world_) << " s of "
-                << mesh_.time().value() << " (" << label(100*done/nSettle)
-                << " % of the settling), wall " << hms(wall).c_str()
-                << ", to its end ~"
-                << hms(wall*(nSettle - done)/done).c_str() << endl;
-        }
+        diag_.settling(done, nSettle, w0, wallLast);
     }
 }
 
 
 void Foam::demCoupling::progress(const bool force)
 {
-    const scalar wall = std::chrono::duration<scalar>
-    (
-        std::chrono::steady_clock::now() - wallStart_
-    ).count();
-    bool due =
-        force
-     || (progressSteps_ > 0 && nSteps_ % progressSteps_ == 0)
-     || (progressSteps_ == 0 && wall - wallLastProgress_ >= progressInterval_);
-    // decomposed: the master's clock decides (the line needs all processors)
-    Pstream::scatter(due);
-    if (!due) return;
-    wallLastProgress_ = wall;
-
-    const Time& runTime = mesh_.time();
-    const scalar t = runTime.value();
-    const scalar tEnd = runTime.endTime().value();
-    const scalar done = t - startTime_;
-    const scalar eta =
-        done > 0 ? wall*max(tEnd - t, scalar(0))/done : scalar(0);
-
-    dem_stats st;
-    world_.check(dem_world_stats(world_, &st), "dem_world_stats");
-    const label nAll =
-        returnReduce(label(dem_world_count(world_)), sumOp<label>());
-    // (decomposed: every processor created the initial particles, the
-    // master alone inserts; its count is the total)
-    label nInserted = label(st.inserted);
-    Pstream::scatter(nInserted);
-    const scalar maxOverlap =
-        returnReduce(scalar(st.max_overlap_ratio), maxOp<scalar>());
-    const label lost = lostTotal();
-    List<label> outCounts(outletPatches_.size());
-    forAll(outletPatches_, k)
-    {
-        scalar mass = 0;
-        outCounts[k] = outletTotal(k, mass);
-    }
-
-    const scalar tComm = returnReduce(tComm_, maxOp<scalar>());
-    const scalar total = max(tDem_ + tCoupling_ + tFluid_ + tComm_, VSMALL);
-    // percent done, rounded down; 100 only at the last step (the time
-    // summed from the steps may end a rounding error below endTime)
-    const bool last = tEnd - t < 0.5*runTime.deltaTValue();
-    const label percent =
-        last ? 100
-      : min(label(100*(t - startTime_)/max(tEnd - startTime_, VSMALL)), 99);
-    OStringStream os;
-    os  << "progress: t = " << t << " s of " << tEnd << " ("
-        << percent << " %), wall " << hms(wall).c_str() << ", to the end ~"
-        << hms(eta).c_str()
-        << ", particles " << nAll
-        << " (inserted " << nInserted << ", removed";
-    forAll(outletPatches_, k)
-    {
-        os  << " " << mesh_.boundaryMesh()[outletPatches_[k]].name() << " "
-            << outCounts[k];
-    }
-    if (outletPatches_.empty()) os << " 0";
-    os  << ", lost " << lost << ")"
-        << ", max overlap " << 0.001*std::round(1e5*maxOverlap)
-        << " % of d"
-        << ", time DEM " << label(100*tDem_/total + 0.5)
-        << " % coupling " << label(100*tCoupling_/total + 0.5)
-        << " % fluid " << label(100*tFluid_/total + 0.5) << " %";
-    if (Pstream::parRun())
-    {
-        os  << " communication " << label(100*tComm_/total + 0.5)
-            << " % (most on one processor " << label(100*tComm/total + 0.5)
-            << " %), particle volume across processors "
-            << int64_t(returnReduce(map_.haloParticleSteps(), sumOp<scalar>()))
-            << " particle-steps";
-    }
-    Info<< os.str().c_str() << endl;
+    diag_.progress(nSteps_, force);
 }
 
 

@@ -463,7 +463,7 @@ void Foam::demCoupling::checkInitialState()
 
     // centres inside the mesh (decomposed: in some processor's cells; every
     // processor holds the whole initial set here)
-    const labelList owner(cellOwners());
+    const labelList owner(decomposition_.cellOwners());
     label nOut = 0, firstOut = -1;
     for (label i = 0; i < n; ++i)
     {

@@ -4,40 +4,94 @@
   License: GPL-3.0-or-later (see LICENSE)
 
 Description
-    The particle cloud on the mesh: locating every particle (steps 1 and 5
-    of evolve(), demCoupling.H), removing those outside the mesh, booked on
-    their outlet patch or counted as lost, and the records of the removed
-    particles (postProcessing/demOutlets).
+    Locating the particles (steps 1 and 5 of demCoupling::evolve()),
+    removing those outside the mesh, booked on their outlet patch or
+    counted as lost, and the records of the removed particles
+    (postProcessing/demOutlets).
 
 \*---------------------------------------------------------------------------*/
 
-#include "demCoupling.H"
-#include "timeCompletion.H"
-#include "dictionaryFileCheck.H"
-#include "demCouplingTools.H"
-#include "OStringStream.H"
-#include <limits>
-#include "fvc.H"
-#include "fvm.H"
-#include "cyclicPolyPatch.H"
+#include "meshCloud.H"
 #include "processorPolyPatch.H"
-#include "processorCyclicPolyPatch.H"
-#include "mathematicalConstants.H"
+#include "OStringStream.H"
 #include "OSspecific.H"
 #include <fstream>
 
-using namespace Foam::constant::mathematical;
 using namespace Foam::demTools;
+
+// * * * * * * * * * * * * * * * * Constructor * * * * * * * * * * * * * * //
+
+Foam::meshCloud::meshCloud
+(
+    const fvMesh& mesh,
+    demWorld& world,
+    const particleLocator& locator,
+    const demTools::periodicBox& box,
+    particleDecomposition& decomposition,
+    couplingState& state,
+    const label maxLost
+)
+:
+    mesh_(mesh),
+    world_(world),
+    locator_(locator),
+    box_(box),
+    decomposition_(decomposition),
+    state_(state),
+    maxLost_(maxLost)
+{}
+
 
 // * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
 
-Foam::label Foam::demCoupling::lostTotal() const
+void Foam::meshCloud::addOutlets(const dictionary& dict)
+{
+    const polyBoundaryMesh& bm = mesh_.boundaryMesh();
+    state_.lostPerPatch.setSize(bm.size(), 0);
+
+    const wordList outlets
+    (
+        dict.getOrDefault<wordList>("outletPatches", wordList())
+    );
+    for (const word& name : outlets)
+    {
+        const label patchi = bm.findPatchID(name);
+        if (patchi < 0)
+        {
+            FatalIOErrorInFunction(dict)
+                << "outletPatches entry " << name << " in " << dict.name()
+                << " is not a patch; patches: " << bm.names()
+                << exit(FatalIOError);
+        }
+        int id;
+        world_.check(dem_world_add_outlet(world_, &id), "dem_world_add_outlet");
+        outletPatches_.append(patchi);
+        outletIds_.append(id);
+    }
+}
+
+
+Foam::label Foam::meshCloud::outletTotal(const label k, scalar& mass) const
+{
+    int64_t cnt = 0;
+    double m = 0;
+    world_.check
+    (
+        dem_world_outlet_totals(world_, outletIds_[k], &cnt, &m),
+        "dem_world_outlet_totals"
+    );
+    mass = returnReduce(scalar(m), sumOp<scalar>());
+    return returnReduce(label(cnt), sumOp<label>());
+}
+
+
+Foam::label Foam::meshCloud::lostTotal() const
 {
     return returnReduce(state_.lostUnknown + sum(state_.lostPerPatch), sumOp<label>());
 }
 
 
-void Foam::demCoupling::locateAll()
+void Foam::meshCloud::locate(std::string& failure)
 {
     dem_arrays a = world_.arrays();
     const label n = label(a.n_owned);
@@ -49,7 +103,7 @@ void Foam::demCoupling::locateAll()
     {
         label& host = idSlot(hostById_, a.id[i]);
         label exitFace = -1;
-        const label c = locator_.locate(wrapped(a, i), host, exitFace);
+        const label c = locator_.locate(box_.wrapped(a.x, i), host, exitFace);
         host = c;
         if (c < 0)
         {
@@ -65,7 +119,7 @@ void Foam::demCoupling::locateAll()
     labelList exitPatch(leaving.size(), -1);
     if (Pstream::parRun())
     {
-        migrate(leaving, leavingFace, taken, exitPatch);
+        decomposition_.migrate(leaving, leavingFace, taken, exitPatch, hostById_);
         a = world_.arrays();
     }
 
@@ -133,7 +187,7 @@ void Foam::demCoupling::locateAll()
             << nLost << " lost" << endl;
     }
     const label lost = nLost ? lostTotal() : 0;
-    if (nLost && lost > maxLost_ && failure_.empty())
+    if (nLost && lost > maxLost_ && failure.empty())
     {
         OStringStream os;
         os  << lost << " particles lost in total (left the mesh through"
@@ -141,7 +195,7 @@ void Foam::demCoupling::locateAll()
             << " above); constant/demProperties allows maxLostParticles "
             << maxLost_ << ". Make the patch an outlet (outletPatches), fix"
             << " the walls, lower the time steps, or raise maxLostParticles";
-        failure_ = os.str();
+        failure = os.str();
     }
     if (nOut > 0)
     {
@@ -157,7 +211,7 @@ void Foam::demCoupling::locateAll()
 }
 
 
-void Foam::demCoupling::writeRemovedRecords()
+void Foam::meshCloud::writeRemovedRecords()
 {
     const dem_removed_record* rec = nullptr;
     size_t nRec = 0;

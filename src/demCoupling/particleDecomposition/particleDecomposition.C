@@ -40,34 +40,37 @@ Description
 
 \*---------------------------------------------------------------------------*/
 
-#include "demCoupling.H"
-#include "demCouplingTools.H"
+#include "particleDecomposition.H"
+#include "processorPolyPatch.H"
 #include "PstreamBuffers.H"
-#include "OStringStream.H"
 #include "OSspecific.H"
-#include "Map.H"
 #include <chrono>
 #include <vector>
 
 using namespace Foam::demTools;
 
+// * * * * * * * * * * * * * * * * Constructor * * * * * * * * * * * * * * //
+
+Foam::particleDecomposition::particleDecomposition
+(
+    const fvMesh& mesh,
+    demWorld& world,
+    const particleLocator& locator,
+    const demTools::periodicBox& box,
+    scalar& commTime
+)
+:
+    mesh_(mesh),
+    world_(world),
+    locator_(locator),
+    box_(box),
+    tComm_(commTime)
+{}
+
+
 // * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
 
-Foam::vector Foam::demCoupling::wrapped(const dem_arrays& a, const label i) const
-{
-    vector x(toVec(a.x, i));
-    for (direction k = 0; k < 3; ++k)
-    {
-        if (!periodic_[k]) continue;
-        const scalar L = boxHi_[k] - boxLo_[k];
-        if (x[k] >= boxHi_[k]) x[k] -= L;
-        else if (x[k] < boxLo_[k]) x[k] += L;
-    }
-    return x;
-}
-
-
-Foam::fileName Foam::demCoupling::stateFile(const fileName& dir) const
+Foam::fileName Foam::particleDecomposition::stateFile(const fileName& dir) const
 {
     if (!Pstream::parRun())
     {
@@ -82,8 +85,14 @@ Foam::fileName Foam::demCoupling::stateFile(const fileName& dir) const
 }
 
 
-bool Foam::demCoupling::restoreState(const fileName& dir, const bool initial)
+bool Foam::particleDecomposition::restore
+(
+    const fileName& dir,
+    const bool initial,
+    bool& serialState
+)
 {
+    serialState = false;
     const fileName own(stateFile(dir));
     const fileName serial(dir/"demState.bin");
 
@@ -146,22 +155,12 @@ bool Foam::demCoupling::restoreState(const fileName& dir, const bool initial)
         }
         distributeByCell();
     }
-    const fileName cpl(dir/"demCouplingState.bin");
-    if (!returnReduce(isFile(cpl), andOp<bool>()))
-    {
-        FatalErrorInFunction
-            << "the start time " << dir.path() << " has the DEM state "
-            << state.name() << " but no " << cpl << " (the coupling's "
-            << "history: fluid velocity at the particles, time averages), "
-            << "without which the restart is not exact; start from a time "
-            << "written completely by demFoam" << exit(FatalError);
-    }
-    readCouplingState(cpl, haveSerial);
+    serialState = haveSerial;
     return true;
 }
 
 
-Foam::labelList Foam::demCoupling::cellOwners() const
+Foam::labelList Foam::particleDecomposition::cellOwners() const
 {
     const dem_arrays a = world_.arrays();
     const label n = label(a.n_owned);
@@ -171,7 +170,7 @@ Foam::labelList Foam::demCoupling::cellOwners() const
     {
         // the run's own test (particleLocator::inside), so that a particle
         // accepted here is found by the first locate and vice versa
-        if (locator_.inside(wrapped(a, i)))
+        if (locator_.inside(box_.wrapped(a.x, i)))
         {
             owner[i] = Pstream::myProcNo();
         }
@@ -189,7 +188,7 @@ Foam::labelList Foam::demCoupling::cellOwners() const
 }
 
 
-void Foam::demCoupling::distributeByCell()
+void Foam::particleDecomposition::distributeByCell()
 {
     if (!Pstream::parRun()) return;
 
@@ -225,7 +224,7 @@ void Foam::demCoupling::distributeByCell()
 }
 
 
-Foam::label Foam::demCoupling::patchBeyond
+Foam::label Foam::particleDecomposition::patchBeyond
 (
     const label from,
     const point& faceCentre,
@@ -263,12 +262,13 @@ Foam::label Foam::demCoupling::patchBeyond
 }
 
 
-void Foam::demCoupling::migrate
+void Foam::particleDecomposition::migrate
 (
     const DynamicList<label>& leaving,
     const DynamicList<label>& exitFace,
     boolList& taken,
-    labelList& exitPatch
+    labelList& exitPatch,
+    DynamicList<label>& hostById
 )
 {
     const auto t0 = std::chrono::steady_clock::now();
@@ -306,7 +306,7 @@ void Foam::demCoupling::migrate
             "dem_world_pack_particle"
         );
         sizes[k] = label(sz);
-        where[k] = wrapped(a, leaving[k]);
+        where[k] = box_.wrapped(a.x, leaving[k]);
         if (exitFace[k] >= 0 && locator_.processorBehind(exitFace[k]) >= 0)
         {
             through[k] = mesh_.faceCentres()[exitFace[k]];
@@ -393,7 +393,7 @@ void Foam::demCoupling::migrate
                         "dem_world_unpack_particle"
                     );
                     const dem_arrays b = world_.arrays();
-                    idSlot(hostById_, b.id[b.n_owned - 1]) = inCell[r][k];
+                    idSlot(hostById, b.id[b.n_owned - 1]) = inCell[r][k];
                 }
                 off += inSizes[r][k];
             }
