@@ -33,7 +33,8 @@ static double contact_time(const dem_time_pair *p, double v_imp, int rayleigh, i
 /* f_n as hertzMindlin; tangential: the spring xi (history h, rotated into
  * the tangent plane, += v_t dt), f_t = -k_t xi - c_n sqrt(m* k_t) v_t
  * (tangential damping with the normal c_n), |f_t| <= mu f_cn; beyond the
- * limit f_t is scaled to it and xi set to the spring of that force. */
+ * limit f_t is scaled to it and xi set so that spring and damping give that
+ * force, xi = -(f_t + c_t v_t)/k_t (as the spring-dashpot laws, 7.3). */
 static inline void contact(const dem_pair *q, double dt, const double n[3], double delta, double d,
                            const double vc[3], double meff, double rstar, double *h,
                            double F[3], double ft[3], double *fel, double *fnout)
@@ -53,11 +54,11 @@ static inline void contact(const dem_pair *q, double dt, const double n[3], doub
         const double kt = q->g8 * sq, ct = q->cn * sqrt(meff * kt);
         for (int k = 0; k < 3; ++k) ft[k] = -kt * h[k] - ct * vt[k];
         const double ftm = sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]), lim = q->mu * fcn;
-        if (ftm > lim) {   /* Coulomb: force to the limit, spring to that force */
+        if (ftm > lim) {   /* Coulomb: force to the limit, spring + damping to that force */
             const double s = lim / ftm;
             for (int k = 0; k < 3; ++k) {
                 ft[k] *= s;
-                h[k] = -ft[k] / kt;
+                h[k] = -(ft[k] + ct * vt[k]) / kt;
             }
         }
     } else {
