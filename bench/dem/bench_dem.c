@@ -4,7 +4,11 @@
   Copyright (C) 2026 the demFoam authors
   License: GPL-3.0-or-later (see LICENSE)
 
-  Usage: bench_dem BEDFILE NSTEPS
+  Usage: bench_dem BEDFILE NSTEPS [LAW]
+
+  LAW: a contact-law name (dem_contact_law_name), default hertzMindlin.
+  With a core built with -DDEM_PROFILE (bench/dem/profile) it also prints
+  the seconds of each step phase (dem_world_phase_times) of the timed loop.
 
   BEDFILE is written by bed.py convert: magic "DEMBED01", int64 N, box lo[3],
   hi[3] (doubles), then per particle int64 id and 11 doubles
@@ -83,8 +87,13 @@ static int check(dem_world *w, dem_status s, const char *what)
 
 int main(int argc, char **argv)
 {
-    if (argc != 3) {
-        fprintf(stderr, "usage: bench_dem BEDFILE NSTEPS\n");
+    if (argc != 3 && argc != 4) {
+        fprintf(stderr, "usage: bench_dem BEDFILE NSTEPS [LAW]\n");
+        return 2;
+    }
+    dem_contact_law law = DEM_CONTACT_HERTZ_MINDLIN;
+    if (argc == 4 && dem_contact_law_from_name(argv[3], &law) != DEM_OK) {
+        fprintf(stderr, "bench_dem: LAW = %s: no such contact law\n", argv[3]);
         return 2;
     }
     const char *path = argv[1];
@@ -113,7 +122,7 @@ int main(int argc, char **argv)
 
     dem_config c;
     dem_config_default(&c);
-    c.contact_law = DEM_CONTACT_HERTZ_MINDLIN;
+    c.contact_law = law;
     c.dt = 1.0e-6;
     c.gravity[0] = 0.0; c.gravity[1] = 0.0; c.gravity[2] = -9.81;
     for (int k = 0; k < 3; ++k) {
@@ -183,9 +192,12 @@ int main(int argc, char **argv)
     if (check(w, dem_world_step(w, 1), "dem_world_step (first, untimed)")) return 1;
     dem_stats s0;
     if (check(w, dem_world_stats(w, &s0), "dem_world_stats")) return 1;
+    dem_phase_times p0, p1;
+    int prof = dem_world_phase_times(w, &p0) == DEM_OK;
     double t1 = now(), c1 = cpu_now();
     if (check(w, dem_world_step(w, nsteps), "dem_world_step")) return 1;
     double t2 = now(), c2 = cpu_now();
+    if (prof) prof = dem_world_phase_times(w, &p1) == DEM_OK;
 
     dem_stats s;
     if (check(w, dem_world_stats(w, &s), "dem_world_stats")) return 1;
@@ -206,6 +218,7 @@ int main(int argc, char **argv)
                      + 2 * 3 * sizeof(double) /* force_ext torque_ext */
                      + sizeof(double) + 3 * sizeof(double) + 3 * sizeof(double); /* drag */
 
+    printf("ours_contact_law=%s\n", dem_contact_law_name(law));
     printf("ours_n=%zu\n", np);
     printf("ours_steps=%lld\n", nsteps);
     printf("ours_first_step_seconds=%.6f\n", t1 - t0);
@@ -227,6 +240,18 @@ int main(int argc, char **argv)
     printf("ours_rss_delta_bytes_per_particle=%.1f\n", 1024.0 * (double)(rss1 - rss0) / (double)np);
     printf("ours_hwm_delta_bytes_per_particle=%.1f\n", 1024.0 * (double)(hwm1 - hwm0) / (double)np);
     printf("ours_log_messages=%ld/%ld/%ld\n", n_log[0], n_log[1], n_log[2]);
+    if (prof) {
+        const double ph[4] = {p1.integrate - p0.integrate, p1.neighbour - p0.neighbour, p1.pairs - p0.pairs,
+                              p1.walls - p0.walls};
+        const char *pn[4] = {"integrate", "neighbour", "pairs", "walls"};
+        double sum = 0.0;
+        for (int k = 0; k < 4; ++k) sum += ph[k];
+        for (int k = 0; k < 4; ++k)
+            printf("ours_phase_%s_seconds=%.6f   (%.1f %% of the loop, %.2f ns per particle-step)\n", pn[k], ph[k],
+                   100.0 * ph[k] / (t2 - t1), 1e9 * ph[k] / ((double)np * (double)nsteps));
+        printf("ours_phase_other_seconds=%.6f   (loop minus the four phases: step bookkeeping and timers)\n",
+               (t2 - t1) - sum);
+    }
     /* FNV-1a digest of the final positions, velocities and spins (storage
        order): equal digests = bit-identical trajectories of two core versions */
     dem_arrays a;

@@ -173,6 +173,7 @@ static int record_ready(dem_world *w)
 
 void dem_forces(dem_world *w, double hist_dt)
 {
+    DEM_PROF_START(t0);
     w->hdt = hist_dt;
     w->ncrec = 0;
     w->crec_now = record_ready(w);
@@ -189,7 +190,10 @@ void dem_forces(dem_world *w, double hist_dt)
     w->pair_contacts = nct;
     w->max_overlap = movr;
     w->wall_contacts = 0;
+    DEM_PROF_ADD(w, DEM_PROF_PAIRS, t0);
+    DEM_PROF_START(t1);
     if (w->nwalls) wall_loop(w, law->contact);
+    DEM_PROF_ADD(w, DEM_PROF_WALLS, t1);
     w->forces_valid = 1;
     w->crec_valid = w->crec_now;
     w->crec_now = 0;

@@ -14,6 +14,24 @@
 
 #define DEM_PI 3.14159265358979323846
 
+/* Phase timers of dem_world_step (dem_world_phase_times): compiled in with
+ * -DDEM_PROFILE only; otherwise no code at all.  C11 timespec_get. */
+enum { DEM_PROF_INTEGRATE, DEM_PROF_NEIGHBOUR, DEM_PROF_PAIRS, DEM_PROF_WALLS };
+#ifdef DEM_PROFILE
+#include <time.h>
+static inline double dem_prof_now(void)
+{
+    struct timespec t;
+    timespec_get(&t, TIME_UTC);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+#define DEM_PROF_START(v) const double v = dem_prof_now()
+#define DEM_PROF_ADD(w, k, v) ((w)->prof[k] += dem_prof_now() - (v))
+#else
+#define DEM_PROF_START(v) ((void)0)
+#define DEM_PROF_ADD(w, k, v) ((void)0)
+#endif
+
 /*--- error helpers ---------------------------------------------------------*/
 dem_status dem_fail_(const dem_world *w, dem_status code, const char *file, int line,
                      const char *fmt, ...)
@@ -167,6 +185,7 @@ struct dem_world {
     double *wc_h;            /* 3 per entry */
     double t_build;
     int64_t nbuilds;
+    double prof[4];          /* seconds per step phase (DEM_PROFILE builds): dem_phase_times order */
 
     /* carry buffers (reused) */
     dem_carry *carry; size_t ncarry, capcarry;

@@ -224,6 +224,7 @@ static dem_status step_drift(dem_world *w, int nk, double *d2max)
     const double *g = w->cfg.gravity;
     double dm = 0;
     const size_t n = w->n;
+    DEM_PROF_START(t0);
     if (!w->have_ext) dm = kick_drift_plain(w, h, dt, g, nk);
     else for (size_t i = 0; i < n; ++i) {
         kick_n(w, i, h, g, nk);
@@ -236,6 +237,7 @@ static dem_status step_drift(dem_world *w, int nk, double *d2max)
         if (d2 > dm) dm = d2;
     }
     *d2max = dm;
+    DEM_PROF_ADD(w, DEM_PROF_INTEGRATE, t0);
     w->step++;
     w->time += dt;
     dem_status st;
@@ -261,7 +263,10 @@ static dem_status step_force_eval(dem_world *w, double d2max, double vw)
 {
     dem_status st;
     if (list_needs_build(w, d2max, vw)) {
-        if ((st = dem_list_build(w))) return st;
+        DEM_PROF_START(t0);
+        st = dem_list_build(w);
+        DEM_PROF_ADD(w, DEM_PROF_NEIGHBOUR, t0);
+        if (st) return st;
     }
     dem_forces(w, w->cfg.dt);
     if (w->max_overlap > w->cfg.max_overlap_ratio)
@@ -275,7 +280,9 @@ static dem_status step_force_eval(dem_world *w, double d2max, double vw)
 static void step_end_kick(dem_world *w)
 {
     const double h = 0.5 * w->cfg.dt;
+    DEM_PROF_START(t0);
     for (size_t i = 0; i < w->n; ++i) kick1(w, i, h, w->cfg.gravity);
+    DEM_PROF_ADD(w, DEM_PROF_INTEGRATE, t0);
 }
 
 dem_status dem_world_step(dem_world *w, int64_t nsteps)

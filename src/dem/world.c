@@ -643,6 +643,22 @@ dem_status dem_world_memory(const dem_world *w, size_t *particle_bytes, size_t *
     return DEM_OK;
 }
 
+dem_status dem_world_phase_times(const dem_world *w, dem_phase_times *t)
+{
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED((dem_world *)w, t, "phase_times");
+    t->integrate = w->prof[DEM_PROF_INTEGRATE];
+    t->neighbour = w->prof[DEM_PROF_NEIGHBOUR];
+    t->pairs = w->prof[DEM_PROF_PAIRS];
+    t->walls = w->prof[DEM_PROF_WALLS];
+#ifdef DEM_PROFILE
+    return DEM_OK;
+#else
+    return DEM_FAIL((dem_world *)w, DEM_ERR_STATE, "phase_times: the core was built without -DDEM_PROFILE "
+                    "(make -C src/dem EXTRA_CFLAGS=-DDEM_PROFILE)");
+#endif
+}
+
 dem_status dem_world_record_contacts(dem_world *w, int on)
 {
     if (!w) return DEM_ERR_ARG;

@@ -341,6 +341,14 @@ dem_status dem_world_stats(const dem_world *w, dem_stats *s);
  *  storage incl. capacity slack and the coupling arrays once allocated) and
  *  the neighbour/wall lists with their contact history.  Either may be NULL. */
 dem_status dem_world_memory(const dem_world *w, size_t *particle_bytes, size_t *list_bytes);
+/** Added: wall-clock seconds spent in the phases of stepping since the world
+ *  was created: integration (half kicks, drift, outlets/inlets), neighbour-list
+ *  builds, pair forces (incl. zeroing the force arrays) and wall contacts.
+ *  Measured only by a core built with -DDEM_PROFILE
+ *  (make -C src/dem EXTRA_CFLAGS=-DDEM_PROFILE; bench/dem/profile); any
+ *  other build writes zeros and returns DEM_ERR_STATE. */
+typedef struct { double integrate, neighbour, pairs, walls; } dem_phase_times;
+dem_status dem_world_phase_times(const dem_world *w, dem_phase_times *t);
 /** Per owned particle: coordination number (particle contacts) and the sum
  *  of contact forces (3 per particle), as of the last force evaluation.
  *  Either pointer may be NULL.  DEM_ERR_STATE (nothing written) when the
