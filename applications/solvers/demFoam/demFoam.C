@@ -32,20 +32,7 @@ Description
 #include "demCoupling.H"
 #include "interpolateInner.H"
 #include "fluxReconstruction.H"
-#include "timeCompletion.H"
-#include "processorDirs.H"
-#include "signalRequests.H"
-#include <chrono>
-#include <csetjmp>
-#include <csignal>
-
-// A floating-point exception in the fluid solution (OpenFOAM's trapFpe)
-// jumps back to the time loop, which writes the last good state
-static sigjmp_buf fpeJump;
-static void fpeHandler(int)
-{
-    siglongjmp(fpeJump, 1);
-}
+#include "runControl.H"
 
 int main(int argc, char *argv[])
 {
@@ -68,12 +55,7 @@ int main(int argc, char *argv[])
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
     #include "createTime.H"
-    // a decomposition that does not fit, or a start from a half-written
-    // time, stops here, before the mesh or any field is read
-    checkProcessorDirs(runTime);
-    timeCompletion::checkStart(runTime);
-    #include "restoreTimeValue.H"
-    demFoamSignals::watch();
+    #include "runControlStart.H"
     #include "createMesh.H"
     #include "createControl.H"
     #include "createTimeControls.H"
@@ -88,43 +70,9 @@ int main(int argc, char *argv[])
         return 0;
     }
 
-    // keep the previous time of every field, for the last good state
-    #include "storeOldTimes.H"
-    const label iStart = runTime.timeIndex();
-    const label injectFluidNaN = demCoupling::injectedStep("fluidNaN");
-    const label injectFpe = demCoupling::injectedStep("fpe");
-    // processor p raises the stop signal on itself in step N + p, after the
-    // step's requests were taken: a signal that reaches the processors in
-    // different steps
-    const label injectLateSignal = demCoupling::injectedStep("lateSignal");
-    if (injectLateSignal >= 0 && !sigStopAtWriteNow::active())
-    {
-        FatalErrorInFunction
-            << "DEMFOAM_DEBUG_INJECT=lateSignal@" << injectLateSignal
-            << " needs OptimisationSwitches { stopAtWriteNowSignal N; } in "
-            << runTime.controlDict().name() << exit(FatalError);
-    }
-    volatile scalar tGood = runTime.value();
-    volatile label iGood = runTime.timeIndex();
-    #include "writeLastGood.H"
-
-    Info<< "\nStarting time loop\n" << endl;
-
-    if (sigsetjmp(fpeJump, 1))
-    {
-        writeLastGood("floating-point exception (SIGFPE) in the fluid solution");
-    }
-    // serial only: in a decomposed run the other processors would wait in
-    // the fluid solution's communication; there OpenFOAM's own SIGFPE
-    // handler stops the run (the last written time is the restart point)
-    struct sigaction fpeAction, fpeDefault;
-    fpeAction.sa_handler = fpeHandler;
-    sigemptyset(&fpeAction.sa_mask);
-    fpeAction.sa_flags = 0;
-    if (!Pstream::parRun())
-    {
-        sigaction(SIGFPE, &fpeAction, &fpeDefault);
-    }
+    // the pressure the fluid check looks at (runControlFluidCheck.H)
+    const volScalarField& runControlPressure = p;
+    #include "runControlInit.H"
 
     while (runTime.run())
     {
@@ -132,39 +80,7 @@ int main(int argc, char *argv[])
         #include "CourantNo.H"
         #include "setDeltaT.H"
 
-        tGood = runTime.value();
-        iGood = runTime.timeIndex();
-        dem.checkpoint();
-        ++runTime;
-
-        Info<< "Time = " << runTime.timeName() << nl << endl;
-
-        // requests by signal, taken here on every processor
-        demFoamSignals::watch();
-        const label requests = demFoamSignals::take();
-        if (requests & demFoamSignals::requestStop)
-        {
-            Info<< "demFoam: stop signal (" << demFoamSignals::stopSignal().c_str()
-                << "): writing t = "
-                << runTime.timeName() << " and stopping" << nl << endl;
-            runTime.setEndTime(runTime.value());
-        }
-        if (requests & demFoamSignals::requestWrite)
-        {
-            Info<< "demFoam: write signal (writeNowSignal "
-                << sigWriteNow::signalNumber() << "): writing t = "
-                << runTime.timeName() << nl << endl;
-            dem.writeThisStep();
-        }
-        if
-        (
-            injectLateSignal >= 0
-         && runTime.timeIndex() - iStart
-         == injectLateSignal + Pstream::myProcNo()
-        )
-        {
-            std::raise(sigStopAtWriteNow::signalNumber());
-        }
+        #include "runControlStep.H"
 
         // The DEM part of the step, with the fluid fields of the last step
         {
@@ -204,20 +120,7 @@ int main(int argc, char *argv[])
             }
         }
 
-        if (runTime.timeIndex() - iStart == injectFluidNaN)
-        {
-            U[0].x() = std::numeric_limits<scalar>::quiet_NaN();
-        }
-        if (runTime.timeIndex() - iStart == injectFpe)
-        {
-            volatile scalar zero = 0;
-            U[0].x() = 1/zero;
-        }
-        const std::string fluidFailure(demCoupling::nonFinite(U, p));
-        if (!fluidFailure.empty())
-        {
-            writeLastGood(fluidFailure);
-        }
+        #include "runControlFluidCheck.H"
 
         dem.updateDriving(U);
         dem.addFluidTime
@@ -228,39 +131,9 @@ int main(int argc, char *argv[])
             ).count()
         );
 
-        const bool writeStep = dem.writeStep();
-        if (writeStep)
-        {
-            dem.write();
-        }
-        if (writeStep && !runTime.writeTime())
-        {
-            // the last step with endTime off the write grid, or a request
-            if (!requests)
-            {
-                Info<< "demFoam: endTime " << runTime.endTime().value()
-                    << " is off the write grid; writing the final state"
-                    << endl;
-            }
-            runTime.writeNow();
-        }
-        else
-        {
-            runTime.write();
-        }
-        if (runTime.writeTime())
-        {
-            // last: the time is complete (a restart may start from it)
-            timeCompletion::mark(runTime);
-        }
-
-        runTime.printExecutionTime(Info);
-        dem.progress(!runTime.run());
+        #include "runControlWrite.H"
     }
-    if (!Pstream::parRun())
-    {
-        sigaction(SIGFPE, &fpeDefault, nullptr);
-    }
+    #include "runControlEnd.H"
 
     Info<< "End\n" << endl;
 

@@ -333,41 +333,75 @@ bool Foam::demCoupling::writeStep() const
 }
 
 
+namespace
+{
+    // A cell field of the particle source (zero-gradient patches: the half
+    // cell at a boundary holds the cell's particles)
+    template<class Type>
+    Foam::tmp<Foam::GeometricField<Type, Foam::fvPatchField, Foam::volMesh>>
+    sourceField
+    (
+        const Foam::fvMesh& mesh,
+        const Foam::word& name,
+        const Foam::dimensionSet& dims,
+        const Foam::tmp<Foam::Field<Type>>& values
+    )
+    {
+        using namespace Foam;
+        tmp<GeometricField<Type, fvPatchField, volMesh>> tf
+        (
+            new GeometricField<Type, fvPatchField, volMesh>
+            (
+                IOobject(name, mesh.time().timeName(), mesh),
+                mesh,
+                dimensioned<Type>(dims, Zero),
+                "zeroGradient"
+            )
+        );
+        tf.ref().primitiveFieldRef() = values;
+        tf.ref().correctBoundaryConditions();
+        return tf;
+    }
+}
+
+
+Foam::tmp<Foam::volScalarField> Foam::demCoupling::Kc() const
+{
+    return sourceField<scalar>
+    (
+        mesh_, "Kc", dimDensity/dimTime, tmp<scalarField>(Kc_.primitiveField())
+    );
+}
+
+
+Foam::tmp<Foam::volVectorField> Foam::demCoupling::Sc() const
+{
+    return sourceField<vector>
+    (
+        mesh_, "Sc", dimForce/dimVolume,
+        Kc_.primitiveField()*Ucoup_.primitiveField() - F_.primitiveField()
+    );
+}
+
+
+// (the kinematic ones: the same divided by rhof)
 Foam::tmp<Foam::volScalarField> Foam::demCoupling::Kkin() const
 {
-    tmp<volScalarField> tK
+    return sourceField<scalar>
     (
-        new volScalarField
-        (
-            IOobject("Kkin", mesh_.time().timeName(), mesh_),
-            mesh_,
-            dimensionedScalar(dimless/dimTime, Zero),
-            "zeroGradient"
-        )
+        mesh_, "Kkin", dimless/dimTime, Kc_.primitiveField()/rhof_
     );
-    tK.ref().primitiveFieldRef() = Kc_.primitiveField()/rhof_;
-    tK.ref().correctBoundaryConditions();
-    return tK;
 }
 
 
 Foam::tmp<Foam::volVectorField> Foam::demCoupling::Skin() const
 {
-    tmp<volVectorField> tS
+    return sourceField<vector>
     (
-        new volVectorField
-        (
-            IOobject("Skin", mesh_.time().timeName(), mesh_),
-            mesh_,
-            dimensionedVector(dimVelocity/dimTime, Zero),
-            "zeroGradient"
-        )
-    );
-    tS.ref().primitiveFieldRef() =
+        mesh_, "Skin", dimVelocity/dimTime,
         (Kc_.primitiveField()*Ucoup_.primitiveField() - F_.primitiveField())
-       /rhof_;
-    tS.ref().correctBoundaryConditions();
-    return tS;
+       /rhof_
+    );
 }
 
 

@@ -45,9 +45,16 @@ struct Foam::demCoupling::stepData
     const vectorField* divTc;
     List<vector> vsCellH;
 
+    // the fluid's density: a cell field (a mixture of fluids, evolve with
+    // rho) or nullptr for the constant rhof; unit: the factor that turns
+    // grad p, div tau and the viscosity passed in into Pa/m, N/m3 and Pa s
+    // (rhof for kinematic ones, 1 for dynamic ones)
+    const scalarField* rhoc;
+    scalar unit;
+
     // per particle: fluid values at the particle, forces and coefficients
     List<vector> uF, fGP, fExch, fPart, divTauP;
-    scalarField epsP, muP, dragFac, Ksum, VpS;
+    scalarField epsP, muP, rhoP, dragFac, Ksum, VpS;
     List<int64_t> idStart;
 
     // optional forces f'' (extraForces/): fluid vorticity and acceleration
@@ -60,8 +67,9 @@ struct Foam::demCoupling::stepData
     :
         dt(dt), nDem(nDem), n(n), nExtra(nExtra),
         Uc(nullptr), gradPc(nullptr), divTc(nullptr),
+        rhoc(nullptr), unit(1),
         uF(n), fGP(n), fExch(n), fPart(n), divTauP(n),
-        epsP(n), muP(n), dragFac(n), Ksum(n, 0), VpS(n), idStart(n),
+        epsP(n), muP(n), rhoP(n), dragFac(n), Ksum(n, 0), VpS(n), idStart(n),
         vortP(nExtra ? n : 0), DuDtP(nExtra ? n : 0), vStart(nExtra ? n : 0),
         maK(nExtra, scalarField(n, 0)),
         impK(nExtra, List<vector>(n, Zero))
@@ -85,6 +93,32 @@ void Foam::demCoupling::evolve
     const volScalarField& nu
 )
 {
+    evolveFluid(U, p, divTauKin, nu, nullptr);
+}
+
+
+void Foam::demCoupling::evolve
+(
+    const volVectorField& U,
+    const volScalarField& p,
+    const volVectorField& divTau,
+    const volScalarField& mu,
+    const volScalarField& rho
+)
+{
+    evolveFluid(U, p, divTau, mu, &rho);
+}
+
+
+void Foam::demCoupling::evolveFluid
+(
+    const volVectorField& U,
+    const volScalarField& p,
+    const volVectorField& divTau,
+    const volScalarField& viscosity,
+    const volScalarField* rho
+)
+{
     const auto tEvolve0 = std::chrono::steady_clock::now();
     const scalar tDem0 = diag_.time.dem;
     const scalar tComm0 = diag_.time.comm;
@@ -94,14 +128,16 @@ void Foam::demCoupling::evolve
     nSubCycles_ = nDem;
 
     stepData sd(dt, nDem, label(world_.arrays().n_owned), extraForces_.size());
-    const volVectorField gradPKin(fvc::grad(p));
+    const volVectorField gradP(fvc::grad(p));
     sd.Uc = &U.primitiveField();
-    sd.gradPc = &gradPKin.primitiveField();
-    sd.divTc = &divTauKin.primitiveField();
+    sd.gradPc = &gradP.primitiveField();
+    sd.divTc = &divTau.primitiveField();
+    sd.rhoc = rho ? &rho->primitiveField() : nullptr;
+    sd.unit = rho ? 1 : rhof_;
 
     // 1-2: the fluid at the particles' start positions (located and weighted
     // by the last call)
-    sampleFluid(sd, U, nu);
+    sampleFluid(sd, U, viscosity);
 
     // 3: DEM sub-steps with the drag re-evaluated every dragUpdateInterval
     if (!subStep(sd))
@@ -139,7 +175,7 @@ void Foam::demCoupling::sampleFluid
 (
     stepData& sd,
     const volVectorField& U,
-    const volScalarField& nu
+    const volScalarField& viscosity
 )
 {
     dem_arrays a = world_.arrays();
@@ -148,7 +184,7 @@ void Foam::demCoupling::sampleFluid
     const vectorField& gradPc = *sd.gradPc;
     const vectorField& divTc = *sd.divTc;
     const scalarField& epsc = eps_.primitiveField();
-    const scalarField& nuc = nu.primitiveField();
+    const scalarField& nuc = viscosity.primitiveField();
     const couplingFormulation& form = formulation_();
     const label nExtra = sd.nExtra;
 
@@ -182,6 +218,7 @@ void Foam::demCoupling::sampleFluid
     const List<vector> divTcH(map_.haloGet(divTc));
     const List<scalar> epscH(map_.haloGet(epsc));
     const List<scalar> nucH(map_.haloGet(nuc));
+    const List<scalar> rhocH(sd.rhoc ? map_.haloGet(*sd.rhoc) : List<scalar>());
     const List<vector> vortH(nExtra ? map_.haloGet(vortCell) : List<vector>());
     const List<vector> DuDtH(nExtra ? map_.haloGet(DuDtCell) : List<vector>());
     if (cellMeanDrag_)
@@ -193,16 +230,20 @@ void Foam::demCoupling::sampleFluid
     {
         const scalar Vp = sd.VpS[s];
         sd.uF[s] = map_.interp(s, Uc, UcH);
-        const vector gp = rhof_*map_.interp(s, gradPc, gradPcH) + state_.G;
-        const vector dtau = rhof_*map_.interp(s, divTc, divTcH);
+        const vector gp = sd.unit*map_.interp(s, gradPc, gradPcH) + state_.G;
+        const vector dtau = sd.unit*map_.interp(s, divTc, divTcH);
         sd.epsP[s] = map_.interp(s, epsc, epscH);
-        sd.muP[s] = rhof_*map_.interp(s, nuc, nucH);
+        sd.muP[s] = sd.unit*map_.interp(s, nuc, nucH);
+        // the fluid at the particle: a mixture's density interpolated with
+        // the same weights (docs/theory.md section 10), else rhof
+        sd.rhoP[s] = sd.rhoc ? map_.interp(s, *sd.rhoc, rhocH) : rhof_;
+        const scalar rhoP = sd.rhoP[s];
         sd.dragFac[s] = form.dragFactor(sd.epsP[s]);
         sd.fGP[s] = -Vp*gp;
         sd.divTauP[s] = Vp*dtau;
         form.explicitForces
         (
-            Vp, gp, dtau, rhof_, g_, sd.fPart[s], sd.fExch[s]
+            Vp, gp, dtau, rhoP, g_, sd.fPart[s], sd.fExch[s]
         );
         setVec(a.force_ext, s, sd.fPart[s]);
         setVec(a.torque_ext, s, vector::zero);
@@ -216,7 +257,7 @@ void Foam::demCoupling::sampleFluid
             forAll(extraForces_, k)
             {
                 sd.maK[k][s] = sd.dragFac[s]
-                   *extraForces_[k].addedMass(2*a.radius[s], rhof_, sd.epsP[s]);
+                   *extraForces_[k].addedMass(2*a.radius[s], rhoP, sd.epsP[s]);
                 ma += sd.maK[k][s];
             }
         }
@@ -259,7 +300,7 @@ bool Foam::demCoupling::subStep(stepData& sd)
                 uf = sd.uF[s] - vs + v;
             }
             const scalar K =
-                drag_->K(2*a.radius[j], sd.epsP[s], mag(slip), rhof_, sd.muP[s])
+                drag_->K(2*a.radius[j], sd.epsP[s], mag(slip), sd.rhoP[s], sd.muP[s])
                *sd.dragFac[s];
             a.drag_coeff[j] = K;
             setVec(a.fluid_velocity, j, uf);
@@ -275,7 +316,7 @@ bool Foam::demCoupling::subStep(stepData& sd)
                 st.u = sd.uF[s];
                 st.vorticity = sd.vortP[s];
                 st.DuDt = sd.DuDtP[s];
-                st.rhof = rhof_;
+                st.rhof = sd.rhoP[s];
                 st.muf = sd.muP[s];
                 st.eps = sd.epsP[s];
                 vector fx(Zero);
@@ -427,8 +468,8 @@ void Foam::demCoupling::exchange
         // applicability index [Z 2.25-2.27], docs/theory.md section 6
         const scalar e = sd.epsP[s];
         const vector fResid =
-            sd.fGP[s] - fd*(1 - e)/e + sd.divTauP[s] + rhof_*Vp*g_;
-        const vector fTotal = fd/e - rhof_*Vp*g_ + fResid;
+            sd.fGP[s] - fd*(1 - e)/e + sd.divTauP[s] + sd.rhoP[s]*Vp*g_;
+        const vector fTotal = fd/e - sd.rhoP[s]*Vp*g_ + fResid;
         state_.etaP[j] = 100*mag(fResid)/max(mag(fTotal), VSMALL);
         // the bed average takes the particles that the fluid carries in
         // part at least: where its total force is below a tenth of the
@@ -482,11 +523,11 @@ void Foam::demCoupling::exchange
         vector S = -F_[c];
         if (pEps)
         {
-            S += (1 - epsRaw_[c])*(rhof_*gradPc[c] + state_.G);
+            S += (1 - epsRaw_[c])*(sd.unit*gradPc[c] + state_.G);
         }
         if (tauEps)
         {
-            S -= (1 - epsRaw_[c])*rhof_*divTc[c];
+            S -= (1 - epsRaw_[c])*sd.unit*divTc[c];
         }
         source_[c] = S;
         sumFluid += S*V[c];

@@ -1,0 +1,160 @@
+/*---------------------------------------------------------------------------*\
+  demFoam
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+
+Application
+    demInterFoam
+
+Description
+    Transient CFD-DEM solver for two incompressible, immiscible fluids
+    (e.g. water and air) with the interface captured by a volume fraction
+    (VOF, explicit MULES with interface compression), in the volume the
+    particles leave free, coupled to the particles of the C DEM core through
+    the same library and run-time selections as demFoam (constant/
+    demProperties: set I, II or III, drag law, voidage model, extra forces,
+    outlets, walls, restart, parallel, the safety net).
+
+    Phase 1 (alpha1 = alpha.<phase 1>) and continuity:
+        d(eps alpha1)/dt + div(eps phi alpha1) = 0,
+        d(eps)/dt + div(eps phi) = 0,
+    momentum of the mixture (rho = alpha1 rho1 + (1 - alpha1) rho2,
+    mu likewise from the phases' transport models):
+        ddt(eps rho, U) + div(eps rho phi, U) + c_tau div(tau)
+          = -c_p grad p + eps rho g + c_p sigma kappa grad(alpha1)
+            - Kc U + Sc,
+    solved for p_rgh = p - rho g.h; docs/theory.md section 10.  The laws
+    that need the fluid's density and viscosity get the mixture's values
+    interpolated to the particle.
+
+    Input as for interFoam (0/alpha.water, 0/p_rgh, 0/U, constant/
+    transportProperties with phases and sigma, constant/g, optional
+    constant/hRef, system/fvSolution solvers "alpha.water.*") plus
+    constant/demProperties as for demFoam; docs/demInterFoam.md.
+
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "immiscibleIncompressibleTwoPhaseMixture.H"
+#include "turbulentTransportModel.H"
+#include "pimpleControl.H"
+#include "fvOptions.H"
+#include "MULES.H"
+#include "demCoupling.H"
+#include "interpolateInner.H"
+#include "fluxReconstruction.H"
+#include "runControl.H"
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Transient CFD-DEM solver for two incompressible, immiscible fluids"
+        " (VOF) with the momentum formulations set I/II/III of Zhou et al."
+        " (2010)"
+    );
+
+    argList::addBoolOption
+    (
+        "checkInput",
+        "check constant/demProperties against the mesh and the initial"
+        " particles (keywords, types, ranges, names, overlaps, time step),"
+        " report and stop without writing anything"
+    );
+
+    #include "postProcess.H"
+
+    #include "addCheckCaseOptions.H"
+    #include "setRootCaseLists.H"
+    #include "createTime.H"
+    #include "runControlStart.H"
+    #include "createMesh.H"
+    #include "createControl.H"
+    #include "createTimeControls.H"
+    #include "createFields.H"
+    #include "initContinuityErrs.H"
+
+    if (args.found("checkInput"))
+    {
+        Info<< "\ndemInterFoam -checkInput: constant/demProperties, the mesh,"
+            << " the phases and the initial particles are valid; nothing"
+            << " written\nEnd\n" << endl;
+        return 0;
+    }
+
+    // the pressure the fluid check looks at (runControlFluidCheck.H)
+    const volScalarField& runControlPressure = p_rgh;
+    #include "runControlInit.H"
+
+    while (runTime.run())
+    {
+        #include "readTimeControls.H"
+        #include "CourantNo.H"
+        #include "interfaceCourantNo.H"
+        #include "setDeltaT.H"
+
+        #include "runControlStep.H"
+
+        // The DEM part of the step, with the fluid fields of the last step:
+        // p, div tau [N/m3], the mixture's mu and rho
+        {
+            const volScalarField muEff("muEff", rho*turbulence->nuEff());
+            const volVectorField divTau
+            (
+                "divTau",
+                fvc::div(muEff*dev2(T(fvc::grad(U))))
+              + fvc::laplacian(muEff, U)
+            );
+            dem.evolve(U, p, divTau, mixture.mu()(), rho);
+        }
+        if (!dem.failure().empty())
+        {
+            writeLastGood(dem.failure());
+        }
+
+        const auto tFluid0 = std::chrono::steady_clock::now();
+
+        epsf = fvc::interpolate(eps);
+        epsPhi = epsf*phi;
+
+        // --- Pressure-velocity PIMPLE corrector loop
+        while (pimple.loop())
+        {
+            #include "alphaEqn.H"
+
+            #include "UEqn.H"
+
+            // --- Pressure corrector loop
+            while (pimple.correct())
+            {
+                #include "pEqn.H"
+            }
+
+            if (pimple.turbCorr())
+            {
+                turbulence->correct();
+            }
+        }
+
+        #include "runControlFluidCheck.H"
+
+        dem.updateDriving(U);
+        dem.addFluidTime
+        (
+            std::chrono::duration<scalar>
+            (
+                std::chrono::steady_clock::now() - tFluid0
+            ).count()
+        );
+
+        #include "runControlWrite.H"
+    }
+    #include "runControlEnd.H"
+
+    Info<< "End\n" << endl;
+
+    return 0;
+}
+
+
+// ************************************************************************* //
