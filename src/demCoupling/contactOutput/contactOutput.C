@@ -182,7 +182,7 @@ void Foam::contactOutput::write() const
     else
     {
         Info<< "demCoupling: contacts of the last DEM step not known (no "
-            << "recorded DEM step since the start or the last restore): "
+            << "DEM step since the start or a restore, or a frozen bed): "
             << "lagrangian/" << cloud.name() << " written empty" << endl;
     }
     if (nLost)

@@ -166,5 +166,6 @@ void Foam::demWorld::captureContacts()
             contactPoints_[3*k + d] = a.x[3*i + d] - s*c.normal[d];
         }
     }
+    contactsStep_ = dem_world_step_count(w_);
     contactsKnown_ = true;
 }
