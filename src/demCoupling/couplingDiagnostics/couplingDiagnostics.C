@@ -35,7 +35,7 @@ namespace
 Foam::couplingDiagnostics::couplingDiagnostics
 (
     const fvMesh& mesh,
-    const demWorld& world,
+    demWorld& world,
     const particleLocator& locator,
     const demTools::periodicBox& box,
     const couplingState& state,
@@ -57,6 +57,7 @@ Foam::couplingDiagnostics::couplingDiagnostics
     cloud_(cloud),
     map_(map),
     bed_(bed),
+    contacts_(mesh, world, box, dict),
     etaWarning_(dict.getOrDefault<scalar>("etaWarning", 20.0)),
     rampTime_(dict.getOrDefault<scalar>("insertionRampTime", 0)),
     progressInterval_(dict.getOrDefault<scalar>("progressInterval", 60)),

@@ -120,6 +120,8 @@ void Foam::couplingDiagnostics::writeCloud() const
         );
         if (n) f.write();
     }
+
+    contacts_.write();
 }
 
 

@@ -170,6 +170,7 @@ bool Foam::demCoupling::checkDictionary
         num("etaWarning", kind::Scalar, 0, inf, false, false),
         num("insertionRampTime", kind::Scalar, 0, inf, false, false),
         any("frozen", kind::Bool),
+        any("writeContacts", kind::Bool),
         num("maxWalkSteps", kind::Label, 1, inf, false, false),
         any("extraForces", kind::List),
         any("periodicDriving", kind::Dict),

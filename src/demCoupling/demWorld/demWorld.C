@@ -6,6 +6,7 @@
 
 #include "demWorld.H"
 #include <cfenv>
+#include <unordered_map>
 #include "error.H"
 #include "messageStream.H"
 
@@ -85,7 +86,9 @@ namespace
 
 dem_status Foam::demWorld::tryStep(const int64_t nsteps)
 {
-    return withoutTraps([&]{ return dem_world_step(w_, nsteps); });
+    const dem_status s = withoutTraps([&]{ return dem_world_step(w_, nsteps); });
+    if (s == DEM_OK) captureContacts();
+    return s;
 }
 
 
@@ -104,4 +107,65 @@ dem_status Foam::demWorld::tryForces()
 void Foam::demWorld::step(const int64_t nsteps, const char* what)
 {
     check(tryStep(nsteps), what);
+}
+
+
+void Foam::demWorld::keepContacts()
+{
+    check(dem_world_record_contacts(w_, 1), "dem_world_record_contacts");
+    keepContacts_ = true;
+}
+
+
+void Foam::demWorld::captureContacts()
+{
+    if (!keepContacts_) return;
+    contactsKnown_ = false;
+    contacts_.clear();
+    contactPoints_.clear();
+    size_t n = 0;
+    if (dem_world_contacts(w_, nullptr, 0, &n) != DEM_OK) return;
+    contacts_.resize(n);
+    check(dem_world_contacts(w_, contacts_.data(), n, &n), "dem_world_contacts");
+
+    // index by id, owned particles first (a periodic ghost image of an
+    // owned particle then maps to the owned copy)
+    const dem_arrays a = arrays();
+    const size_t nAll = a.n_owned + a.n_ghost;
+    std::unordered_map<int64_t, size_t> index(2*nAll + 1);
+    for (size_t i = 0; i < nAll; ++i)
+    {
+        index.emplace(a.id[i], i);
+    }
+    contactPoints_.resize(3*n);
+    for (size_t k = 0; k < n; ++k)
+    {
+        dem_contact& c = contacts_[k];
+        if (!c.wall && c.id_a > c.id_b)
+        {
+            std::swap(c.id_a, c.id_b);
+            for (int d = 0; d < 3; ++d)
+            {
+                c.normal[d] = -c.normal[d];
+                c.force_n[d] = -c.force_n[d];
+                c.force_t[d] = -c.force_t[d];
+            }
+        }
+        const auto it = index.find(c.id_a);
+        if (it == index.end())
+        {
+            FatalErrorInFunction
+                << "contact of particle " << c.id_a << " that this "
+                << "processor does not hold" << exit(FatalError);
+        }
+        const size_t i = it->second;
+        const double r = a.radius[i];
+        const double s = c.wall ? r - c.overlap - 1e-6*r : r - 0.5*c.overlap;
+        for (int d = 0; d < 3; ++d)
+        {
+            contactPoints_[3*k + d] = a.x[3*i + d] - s*c.normal[d];
+        }
+    }
+    contactsStep_ = dem_world_step_count(w_);
+    contactsKnown_ = true;
 }

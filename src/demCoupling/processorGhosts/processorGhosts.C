@@ -361,6 +361,8 @@ dem_status Foam::processorGhosts::step(const label m, std::string& failure)
         st = agree(world_.tryForces());
         if (st != DEM_OK) return st;
     }
+    // the contacts of the last step while the ghosts are there
+    world_.captureContacts();
     return DEM_OK;
 }
 
