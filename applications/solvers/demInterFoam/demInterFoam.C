@@ -43,6 +43,7 @@ Description
 #include "demCoupling.H"
 #include "interpolateInner.H"
 #include "fluxReconstruction.H"
+#include "constrainFixedVelocityFlux.H"
 #include "runControl.H"
 
 int main(int argc, char *argv[])
