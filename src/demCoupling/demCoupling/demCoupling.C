@@ -130,11 +130,10 @@ Foam::demCoupling::demCoupling
     cellMeanDrag_(false),
     frozen_(dict_.getOrDefault<bool>("frozen", false)),
     epsMin_(dict_.getOrDefault<scalar>("epsMin", 0.1)),
-    rampTime_(dict_.getOrDefault<scalar>("insertionRampTime", 0)),
-    voidageTime_(mesh.time().value()),
     demDt_(0),
     dragUpdateInterval_(0),
     nSubCycles_(0),
+    insertion_(mesh, world_, locator_, dict_, materialIds_, state_),
     diag_
     (
         mesh, world_, locator_, box_, state_, formulation_(), extraForces_,
@@ -142,8 +141,8 @@ Foam::demCoupling::demCoupling
     ),
     ghosts_
     (
-        world_, box_.periodic, box_.lo, box_.hi, inletBoxes_, inletRadius_,
-        diag_.time.comm
+        world_, box_.periodic, box_.lo, box_.hi, insertion_.inletBoxes(),
+        insertion_.inletRadius(), diag_.time.comm
     ),
     decomposition_(mesh, world_, locator_, box_, diag_.time.comm),
     cloud_
@@ -196,7 +195,6 @@ Foam::demCoupling::demCoupling
     {
         (void)mesh_.tetBasePtIs();
     }
-    inletRadius_ = 0;
 
     const word scheme(dict_.getOrDefault<word>("dragScheme", "perParticle"));
     if (scheme == "cellMean")
@@ -245,13 +243,13 @@ Foam::demCoupling::demCoupling
     );
     addWalls();
     cloud_.addOutlets(dict_);
-    addInlets();
+    insertion_.addInlets();
 
     if (!restoreState(mesh.time().timePath()/"uniform", initial))
     {
         // decomposed: every processor creates (and settles) the whole set,
         // then keeps the particles in its cells
-        addInitialParticles();
+        insertion_.addInitialParticles();
         checkInitialState();
         if (checkOnly) return;
         if (nSettle > 0)

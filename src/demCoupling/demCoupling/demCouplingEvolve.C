@@ -151,7 +151,7 @@ void Foam::demCoupling::evolveFluid
     exchange(sd, inserted);
 
     // 5: new positions -> voidage for the fluid step
-    startRamp(inserted);
+    insertion_.startRamp(inserted);
     cloud_.locate(failure_);
     computeWeights();
     computeVoidage();
@@ -209,7 +209,7 @@ void Foam::demCoupling::sampleFluid
     for (label s = 0; s < n; ++s)
     {
         sd.VpS[s] =
-            rampWeight(a.id[s], voidageTime_)*4.0/3.0*pi*pow3(a.radius[s]);
+            insertion_.rampWeight(a.id[s])*4.0/3.0*pi*pow3(a.radius[s]);
     }
 
     // the same in the other processors' cells of the weights (halo)

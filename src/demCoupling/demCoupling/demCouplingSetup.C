@@ -6,16 +6,14 @@
 Description
     Setup of the DEM world from constant/demProperties (docs/demProperties.md),
     called once by the constructor: core parameters, materials and periodic
-    box (configureWorld), walls (patchWalls) and the size and density
-    distributions of particles; the particles that enter are in
-    demCouplingInsertion.C.
+    box (configureWorld) and walls (patchWalls); the particles that enter
+    and their size and density distributions are particleInsertion's.
 
 \*---------------------------------------------------------------------------*/
 
 #include "demCoupling.H"
 #include "timeCompletion.H"
 #include "dictionaryFileCheck.H"
-#include "insertionRegion.H"
 #include "patchWalls.H"
 #include "demCouplingTools.H"
 #include "OStringStream.H"
@@ -40,14 +38,7 @@ Foam::label Foam::demCoupling::materialId
     const dictionary& d
 ) const
 {
-    if (!materialIds_.found(name))
-    {
-        FatalIOErrorInFunction(d)
-            << "material " << name << " in " << d.name()
-            << " is not defined in materials; defined: "
-            << materialIds_.sortedToc() << exit(FatalIOError);
-    }
-    return materialIds_[name];
+    return demTools::materialId(materialIds_, name, d);
 }
 
 
@@ -150,7 +141,14 @@ void Foam::demCoupling::configureWorld()
             {
                 if (!e.isDict()) continue;
                 PtrList<scalarField> store;
-                dMax = max(dMax, distributionMax(readDistribution(e.dict(), "diameter", store)));
+                const dem_distribution dia
+                (
+                    particleInsertion::readDistribution
+                    (
+                        e.dict(), "diameter", store
+                    )
+                );
+                dMax = max(dMax, distributionMax(dia));
             }
         }
         if (dMax > 0)
@@ -269,73 +267,6 @@ void Foam::demCoupling::addWalls()
         dict_.getOrDefault<wordList>("wallPatches", wordList()),
         mat
     );
-}
-
-
-dem_distribution Foam::demCoupling::readDistribution
-(
-    const dictionary& parent,
-    const word& key,
-    PtrList<scalarField>& store
-) const
-{
-    dem_distribution dist;
-    dist.n = 0;
-    dist.values = nullptr;
-    dist.weights = nullptr;
-    dist.a = dist.b = 0;
-
-    if (!parent.isDict(key))
-    {
-        dist.kind = DEM_DIST_FIXED;
-        dist.a = parent.get<scalar>(key);
-        return dist;
-    }
-    const dictionary& d = parent.subDict(key);
-    const word type(d.get<word>("type"));
-    if (type == "fixed")
-    {
-        dist.kind = DEM_DIST_FIXED;
-        dist.a = d.get<scalar>("value");
-    }
-    else if (type == "uniform")
-    {
-        dist.kind = DEM_DIST_UNIFORM;
-        dist.a = d.get<scalar>("min");
-        dist.b = d.get<scalar>("max");
-    }
-    else if (type == "normal")
-    {
-        dist.kind = DEM_DIST_NORMAL;
-        dist.a = d.get<scalar>("mean");
-        dist.b = d.get<scalar>("stdDev");
-    }
-    else if (type == "discrete")
-    {
-        dist.kind = DEM_DIST_DISCRETE;
-        // store is sized by the caller's needs; keep data alive there
-        store.append(new scalarField(d.get<scalarField>("values")));
-        store.append(new scalarField(d.get<scalarField>("weights")));
-        const scalarField& vals = store[store.size()-2];
-        const scalarField& wts = store[store.size()-1];
-        if (vals.size() != wts.size() || vals.empty())
-        {
-            FatalIOErrorInFunction(d)
-                << key << " in " << d.name() << ": values and weights must "
-                << "have the same non-zero length" << exit(FatalIOError);
-        }
-        dist.n = vals.size();
-        dist.values = vals.cdata();
-        dist.weights = wts.cdata();
-    }
-    else
-    {
-        FatalIOErrorInFunction(d)
-            << key << "/type " << type << " in " << d.name()
-            << ": allowed fixed, uniform, normal, discrete"
-            << exit(FatalIOError);
-    }
-    return dist;
 }
 
 

@@ -6,8 +6,8 @@
 Description
     The particles' volume on the mesh (step 5 of evolve(), demCoupling.H):
     their (cell, weight) lists, the voidage eps and the cell-mean particle
-    velocity Up, and the insertion ramp by which a new particle's volume
-    enters the voidage over insertionRampTime.
+    velocity Up, a new particle's volume weighted by its insertion ramp
+    (particleInsertion).
 
 \*---------------------------------------------------------------------------*/
 
@@ -37,16 +37,9 @@ void Foam::demCoupling::computeVoidage()
     const label n = label(a.n_owned);
     const scalarField& V = mesh_.V();
 
-    // insertion ramp: a particle inserted at t0 counts with the weight
-    // (t - t0)/rampTime_ until rampTime_ has passed, so that the fluid
-    // sees its volume arrive over rampTime_ instead of in one step
-    const scalar tNow = mesh_.time().value();
-    for (auto it = state_.rampStart.begin(); it != state_.rampStart.end(); )
-    {
-        if (tNow - it->second >= rampTime_) it = state_.rampStart.erase(it);
-        else ++it;
-    }
-    voidageTime_ = tNow;
+    // insertion ramp (particleInsertion): a new particle's volume enters
+    // over insertionRampTime
+    insertion_.rampAt(mesh_.time().value());
 
     scalarField solid(mesh_.nCells(), 0);
     vectorField mom(mesh_.nCells(), Zero);
@@ -60,7 +53,7 @@ void Foam::demCoupling::computeVoidage()
     for (label i = 0; i < n; ++i)
     {
         const scalar V1 = 4.0/3.0*pi*pow3(a.radius[i]);
-        const scalar Vp = rampWeight(a.id[i], tNow)*V1;
+        const scalar Vp = insertion_.rampWeight(a.id[i])*V1;
         solidParticles += V1;
         solidRamp += V1 - Vp;
         map_.deposit(i, Vp, solid, solidHalo);
@@ -85,50 +78,6 @@ void Foam::demCoupling::computeVoidage()
     const dimensionedScalar one("one", dimless, 1.0);
     if (formulation_->pressureTimesVoidage()) pCoeff_ = eps_; else pCoeff_ = one;
     if (formulation_->viscousTimesVoidage()) tauCoeff_ = eps_; else tauCoeff_ = one;
-}
-
-
-Foam::scalar Foam::demCoupling::rampWeight
-(
-    const int64_t id,
-    const scalar t
-) const
-{
-    if (state_.rampStart.empty())
-    {
-        return 1;
-    }
-    const auto it = state_.rampStart.find(id);
-    return
-        it == state_.rampStart.end()
-      ? 1
-      : min(max(t - it->second, 0)/rampTime_, 1);
-}
-
-
-void Foam::demCoupling::startRamp(const DynamicList<int64_t>& inserted)
-{
-    if (rampTime_ <= 0)
-    {
-        return;
-    }
-    // (decomposed: the master inserts; new particles may migrate to another
-    // processor before their ramp ends, so every processor keeps all ids)
-    List<List<int64_t>> all(Pstream::nProcs());
-    all[Pstream::myProcNo()] = inserted;
-    if (Pstream::parRun())
-    {
-        Pstream::gatherList(all);
-        Pstream::scatterList(all);
-    }
-    const scalar t0 = mesh_.time().value() - mesh_.time().deltaTValue();
-    for (const List<int64_t>& ids : all)
-    {
-        for (const int64_t id : ids)
-        {
-            state_.rampStart[id] = t0;
-        }
-    }
 }
 
 

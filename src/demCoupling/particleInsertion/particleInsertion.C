@@ -4,14 +4,14 @@
   License: GPL-3.0-or-later (see LICENSE)
 
 Description
-    The particles that enter the DEM world, from constant/demProperties
-    (docs/demProperties.md), set up once by the constructor: the inlets
-    (patches with an insertion rate) and the initial particles (a list, or
-    a box or cylinder filled with a number of particles).
+    The particles that enter the DEM world, set up once by demCoupling's
+    constructor: the inlets (patches with an insertion rate), the initial
+    particles (a list, or a box or cylinder filled with a number of
+    particles) and their distributions; the insertion ramp, per fluid step.
 
 \*---------------------------------------------------------------------------*/
 
-#include "demCoupling.H"
+#include "particleInsertion.H"
 #include "insertionRegion.H"
 #include "demCouplingTools.H"
 
@@ -63,7 +63,34 @@ namespace
 }
 
 
-void Foam::demCoupling::addInlets()
+// * * * * * * * * * * * * * * * * Constructor * * * * * * * * * * * * * * //
+
+Foam::particleInsertion::particleInsertion
+(
+    const fvMesh& mesh,
+    demWorld& world,
+    const particleLocator& locator,
+    const dictionary& dict,
+    const HashTable<label>& materialIds,
+    couplingState& state
+)
+:
+    mesh_(mesh),
+    world_(world),
+    locator_(locator),
+    dict_(dict),
+    materialIds_(materialIds),
+    state_(state),
+    rampTime_(dict.getOrDefault<scalar>("insertionRampTime", 0)),
+    rampNow_(mesh.time().value()),
+    inletBoxes_(),
+    inletRadius_(0)
+{}
+
+
+// * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
+
+void Foam::particleInsertion::addInlets()
 {
     const polyBoundaryMesh& bm = mesh_.boundaryMesh();
     if (!dict_.found("inlets")) return;
@@ -103,7 +130,7 @@ void Foam::demCoupling::addInlets()
         dem_particle_template t;
         t.diameter = readDistribution(d, "diameter", store);
         t.density = readDistribution(d, "density", store);
-        t.material = materialId(d.get<word>("material"), d);
+        t.material = materialId(materialIds_, d.get<word>("material"), d);
 
         const scalar dMax = distributionMax(t.diameter);
 
@@ -187,7 +214,7 @@ void Foam::demCoupling::addInlets()
 }
 
 
-void Foam::demCoupling::addInitialParticles()
+void Foam::particleInsertion::addInitialParticles()
 {
     if (!dict_.found("initialParticles")) return;
     const dictionary& all = dict_.subDict("initialParticles");
@@ -196,7 +223,7 @@ void Foam::demCoupling::addInitialParticles()
         if (!e.isDict()) continue;
         const dictionary& d = e.dict();
         const word type(d.get<word>("type"));
-        const int mat = materialId(d.get<word>("material"), d);
+        const int mat = materialId(materialIds_, d.get<word>("material"), d);
         const vector v(d.getOrDefault<vector>("velocity", Zero));
 
         if (type == "list")
@@ -270,6 +297,127 @@ void Foam::demCoupling::addInitialParticles()
                 << "initialParticles/" << e.keyword() << "/type " << type
                 << " in " << d.name() << ": allowed box, cylinder, list"
                 << exit(FatalIOError);
+        }
+    }
+}
+
+
+dem_distribution Foam::particleInsertion::readDistribution
+(
+    const dictionary& parent,
+    const word& key,
+    PtrList<scalarField>& store
+)
+{
+    dem_distribution dist;
+    dist.n = 0;
+    dist.values = nullptr;
+    dist.weights = nullptr;
+    dist.a = dist.b = 0;
+
+    if (!parent.isDict(key))
+    {
+        dist.kind = DEM_DIST_FIXED;
+        dist.a = parent.get<scalar>(key);
+        return dist;
+    }
+    const dictionary& d = parent.subDict(key);
+    const word type(d.get<word>("type"));
+    if (type == "fixed")
+    {
+        dist.kind = DEM_DIST_FIXED;
+        dist.a = d.get<scalar>("value");
+    }
+    else if (type == "uniform")
+    {
+        dist.kind = DEM_DIST_UNIFORM;
+        dist.a = d.get<scalar>("min");
+        dist.b = d.get<scalar>("max");
+    }
+    else if (type == "normal")
+    {
+        dist.kind = DEM_DIST_NORMAL;
+        dist.a = d.get<scalar>("mean");
+        dist.b = d.get<scalar>("stdDev");
+    }
+    else if (type == "discrete")
+    {
+        dist.kind = DEM_DIST_DISCRETE;
+        // store is sized by the caller's needs; keep data alive there
+        store.append(new scalarField(d.get<scalarField>("values")));
+        store.append(new scalarField(d.get<scalarField>("weights")));
+        const scalarField& vals = store[store.size()-2];
+        const scalarField& wts = store[store.size()-1];
+        if (vals.size() != wts.size() || vals.empty())
+        {
+            FatalIOErrorInFunction(d)
+                << key << " in " << d.name() << ": values and weights must "
+                << "have the same non-zero length" << exit(FatalIOError);
+        }
+        dist.n = vals.size();
+        dist.values = vals.cdata();
+        dist.weights = wts.cdata();
+    }
+    else
+    {
+        FatalIOErrorInFunction(d)
+            << key << "/type " << type << " in " << d.name()
+            << ": allowed fixed, uniform, normal, discrete"
+            << exit(FatalIOError);
+    }
+    return dist;
+}
+
+
+void Foam::particleInsertion::rampAt(const scalar t)
+{
+    // a particle inserted at t0 counts with the weight (t - t0)/rampTime_
+    // until rampTime_ has passed, so that the fluid sees its volume arrive
+    // over rampTime_ instead of in one step
+    for (auto it = state_.rampStart.begin(); it != state_.rampStart.end(); )
+    {
+        if (t - it->second >= rampTime_) it = state_.rampStart.erase(it);
+        else ++it;
+    }
+    rampNow_ = t;
+}
+
+
+Foam::scalar Foam::particleInsertion::rampWeight(const int64_t id) const
+{
+    if (state_.rampStart.empty())
+    {
+        return 1;
+    }
+    const auto it = state_.rampStart.find(id);
+    return
+        it == state_.rampStart.end()
+      ? 1
+      : min(max(rampNow_ - it->second, 0)/rampTime_, 1);
+}
+
+
+void Foam::particleInsertion::startRamp(const DynamicList<int64_t>& inserted)
+{
+    if (rampTime_ <= 0)
+    {
+        return;
+    }
+    // (decomposed: the master inserts; new particles may migrate to another
+    // processor before their ramp ends, so every processor keeps all ids)
+    List<List<int64_t>> all(Pstream::nProcs());
+    all[Pstream::myProcNo()] = inserted;
+    if (Pstream::parRun())
+    {
+        Pstream::gatherList(all);
+        Pstream::scatterList(all);
+    }
+    const scalar t0 = mesh_.time().value() - mesh_.time().deltaTValue();
+    for (const List<int64_t>& ids : all)
+    {
+        for (const int64_t id : ids)
+        {
+            state_.rampStart[id] = t0;
         }
     }
 }
