@@ -44,6 +44,7 @@ Foam::couplingDiagnostics::couplingDiagnostics
     const meshCloud& cloud,
     const particleMeshMap& map,
     const bedMonitor& bed,
+    const vector& g,
     const dictionary& dict
 )
 :
@@ -57,6 +58,7 @@ Foam::couplingDiagnostics::couplingDiagnostics
     cloud_(cloud),
     map_(map),
     bed_(bed),
+    g_(g),
     contacts_(mesh, world, box, dict),
     etaWarning_(dict.getOrDefault<scalar>("etaWarning", 20.0)),
     rampTime_(dict.getOrDefault<scalar>("insertionRampTime", 0)),
@@ -64,7 +66,9 @@ Foam::couplingDiagnostics::couplingDiagnostics
     progressSteps_(dict.getOrDefault<label>("progressSteps", 0)),
     startTime_(mesh.time().value()),
     wallStart_(std::chrono::steady_clock::now()),
-    wallLastProgress_(0)
+    wallLastProgress_(0),
+    balance_(),
+    sums_()
 {}
 
 
@@ -76,6 +80,67 @@ void Foam::couplingDiagnostics::startClock()
 }
 
 
+Foam::scalar Foam::couplingDiagnostics::addParticle(const particleStep& p)
+{
+    const vector fpf = p.drag + p.explicitF + p.extra;
+    sums_.particle += fpf;
+    sums_.drag += p.drag;
+    sums_.gradP += p.gradP;
+    sums_.tau += p.divTau;
+    sums_.magParticle += mag(fpf);
+
+    // [Z]'s f_d + f'' of this particle (before the set's factor)
+    const vector fd = (p.drag + p.extra)/p.dragFactor;
+
+    // applicability index [Z 2.25-2.27], docs/theory.md section 6
+    const scalar e = p.eps;
+    const vector fResid =
+        p.gradP - fd*(1 - e)/e + p.divTau + p.rhoFluid*p.Vp*g_;
+    const vector fTotal = fd/e - p.rhoFluid*p.Vp*g_ + fResid;
+    const scalar eta = 100*mag(fResid)/max(mag(fTotal), VSMALL);
+    // the bed average takes the particles that the fluid carries in
+    // part at least: where its total force is below a tenth of the
+    // weight (a bed at rest, no flow yet) the ratio is noise
+    // (docs/theory.md section 6)
+    if (mag(fTotal) >= etaMinForceRatio*p.density*p.Vp*mag(g_))
+    {
+        sums_.eta += eta;
+        ++sums_.etaN;
+    }
+    ++sums_.etaAll;
+    return eta;
+}
+
+
+Foam::couplingState::bedEtaStats Foam::couplingDiagnostics::endStep
+(
+    vector sumFluid
+)
+{
+    if (Pstream::parRun())
+    {
+        reduce(sums_.particle, sumOp<vector>());
+        reduce(sums_.drag, sumOp<vector>());
+        reduce(sums_.gradP, sumOp<vector>());
+        reduce(sums_.tau, sumOp<vector>());
+        reduce(sums_.magParticle, sumOp<scalar>());
+        reduce(sums_.eta, sumOp<scalar>());
+        reduce(sums_.etaN, sumOp<label>());
+        reduce(sums_.etaAll, sumOp<label>());
+    }
+    reduce(sumFluid, sumOp<vector>());
+    balance_.sumDrag = sums_.drag;
+    balance_.sumGradP = sums_.gradP;
+    balance_.sumTau = sums_.tau;
+    balance_.fluidVec = sumFluid;
+    balance_.particleVec = sums_.particle;
+    balance_.fluid = mag(sumFluid + sums_.particle);
+    balance_.particle = max(sums_.magParticle, VSMALL);
+    const label n = sums_.etaN;
+    return {n ? sums_.eta/n : 0, n, sums_.etaAll};
+}
+
+
 void Foam::couplingDiagnostics::report
 (
     const bool full,
@@ -84,19 +149,19 @@ void Foam::couplingDiagnostics::report
 {
     // (before the first step both are 0)
     const scalar rel =
-        balance.particle > 0 ? balance.fluid/balance.particle : scalar(0);
+        balance_.particle > 0 ? balance_.fluid/balance_.particle : scalar(0);
     Info<< "demCoupling: particles "
         << returnReduce(label(dem_world_count(world_)), sumOp<label>())
         << ", DEM steps " << nSubCycles
-        << ", momentum balance: fluid " << balance.fluidVec
-        << " particles " << balance.particleVec
+        << ", momentum balance: fluid " << balance_.fluidVec
+        << " particles " << balance_.particleVec
         << " relErr " << rel << endl;
 
     if (!full) return;
 
-    Info<< "demCoupling: sum of particle drag " << balance.sumDrag
-        << ", of pressure-gradient forces " << balance.sumGradP
-        << ", of viscous forces " << balance.sumTau << endl;
+    Info<< "demCoupling: sum of particle drag " << balance_.sumDrag
+        << ", of pressure-gradient forces " << balance_.sumGradP
+        << ", of viscous forces " << balance_.sumTau << endl;
 
     // (mesh + the part still ramping in = particles)
     Info<< "demCoupling: solid volume: mesh " << solid.mesh

@@ -137,7 +137,7 @@ Foam::demCoupling::demCoupling
     diag_
     (
         mesh, world_, locator_, box_, state_, formulation_(), extraForces_,
-        cloud_, map_, bed_, dict_
+        cloud_, map_, bed_, g_, dict_
     ),
     ghosts_
     (

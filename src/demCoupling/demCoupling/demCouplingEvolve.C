@@ -388,11 +388,6 @@ void Foam::demCoupling::exchange
 
     vectorField Fc(mesh_.nCells(), Zero);
     scalarField Kcell(mesh_.nCells(), 0);
-    vector sumParticle(Zero);
-    vector sumDrag(Zero), sumGradP(Zero), sumTau(Zero);
-    scalar sumMagParticle = 0;
-    scalar etaSum = 0;
-    label etaN = 0, etaAll = 0;
     scalarField etaCell(mesh_.nCells(), 0);
     scalarField wCell(mesh_.nCells(), 0);
     const label nHalo = map_.nHalo();
@@ -428,6 +423,7 @@ void Foam::demCoupling::exchange
         state_.fExtra[k].setSize(nEnd);
     }
     label nSeen = 0;
+    diag_.beginStep();
 
     for (label j = 0; j < nEnd; ++j)
     {
@@ -452,35 +448,16 @@ void Foam::demCoupling::exchange
                 (sd.impK[k][s] - sd.maK[k][s]*(toVec(a.v, j) - sd.vStart[s]))/dt;
             extraRate += state_.fExtra[k][j];
         }
-        const vector fpf = dragRate + sd.fPart[s] + extraRate;
-        sumParticle += fpf;
-        sumDrag += dragRate;
-        sumGradP += sd.fGP[s];
-        sumTau += sd.divTauP[s];
-        sumMagParticle += mag(fpf);
         const vector exch = dragRate + sd.fExch[s] + extraRate;
-
-        // [Z]'s f_d + f'' of this particle (before the set's factor)
-        const vector fd = (dragRate + extraRate)/sd.dragFac[s];
         state_.fDrag[j] = dragRate;
         state_.fGradP[j] = sd.fGP[s];
 
-        // applicability index [Z 2.25-2.27], docs/theory.md section 6
-        const scalar e = sd.epsP[s];
-        const vector fResid =
-            sd.fGP[s] - fd*(1 - e)/e + sd.divTauP[s] + sd.rhoP[s]*Vp*g_;
-        const vector fTotal = fd/e - sd.rhoP[s]*Vp*g_ + fResid;
-        state_.etaP[j] = 100*mag(fResid)/max(mag(fTotal), VSMALL);
-        // the bed average takes the particles that the fluid carries in
-        // part at least: where its total force is below a tenth of the
-        // weight (a bed at rest, no flow yet) the ratio is noise
-        // (docs/theory.md section 6)
-        if (mag(fTotal) >= etaMinForceRatio*a.density[j]*Vp*mag(g_))
-        {
-            etaSum += state_.etaP[j];
-            ++etaN;
-        }
-        ++etaAll;
+        // eta and the momentum balance's sums (couplingDiagnostics)
+        state_.etaP[j] = diag_.addParticle
+        ({
+            dragRate, extraRate, sd.fPart[s], sd.fGP[s], sd.divTauP[s],
+            sd.dragFac[s], sd.epsP[s], sd.rhoP[s], Vp, a.density[j]
+        });
 
         map_.deposit(s, exch, Fc, FcHalo);
         map_.deposit(s, sd.Ksum[s], Kcell, KcellHalo);
@@ -491,17 +468,6 @@ void Foam::demCoupling::exchange
     map_.haloAdd(Kcell, KcellHalo);
     map_.haloAdd(etaCell, etaCellHalo);
     map_.haloAdd(wCell, wCellHalo);
-    if (Pstream::parRun())
-    {
-        reduce(sumParticle, sumOp<vector>());
-        reduce(sumDrag, sumOp<vector>());
-        reduce(sumGradP, sumOp<vector>());
-        reduce(sumTau, sumOp<vector>());
-        reduce(sumMagParticle, sumOp<scalar>());
-        reduce(etaSum, sumOp<scalar>());
-        reduce(etaN, sumOp<label>());
-        reduce(etaAll, sumOp<label>());
-    }
     if (nSeen != n)
     {
         FatalErrorInFunction
@@ -509,7 +475,6 @@ void Foam::demCoupling::exchange
             << "demFoam books outlets itself and expects none"
             << exit(FatalError);
     }
-    state_.bedEta = {etaN ? etaSum/etaN : 0, etaN, etaAll};
 
     // fluid momentum source S = -F + (1 - c_p) grad p - (1 - c_tau) div tau,
     // 1 - c from the solid fraction of the same weights (exact, unclipped)
@@ -533,14 +498,7 @@ void Foam::demCoupling::exchange
         sumFluid += S*V[c];
         eta_[c] = wCell[c] > 0 ? etaCell[c]/wCell[c] : 0;
     }
-    reduce(sumFluid, sumOp<vector>());
-    diag_.balance.sumDrag = sumDrag;
-    diag_.balance.sumGradP = sumGradP;
-    diag_.balance.sumTau = sumTau;
-    diag_.balance.fluidVec = sumFluid;
-    diag_.balance.particleVec = sumParticle;
-    diag_.balance.fluid = mag(sumFluid + sumParticle);
-    diag_.balance.particle = max(sumMagParticle, VSMALL);
+    state_.bedEta = diag_.endStep(sumFluid);
     Ucoup_.primitiveFieldRef() = Uc;
 }
 
