@@ -164,14 +164,14 @@ void Foam::couplingDiagnostics::report
         << ", of viscous forces " << balance_.sumTau << endl;
 
     // (mesh + the part still ramping in = particles)
-    Info<< "demCoupling: solid volume: mesh " << solid.mesh
-        << " particles " << solid.particles
+    Info<< "demCoupling: solid volume: mesh " << solid_.mesh
+        << " particles " << solid_.particles
         << " relDiff "
-        << mag(solid.mesh + solid.ramp - solid.particles)
-          /max(solid.particles, VSMALL);
+        << mag(solid_.mesh + solid_.ramp - solid_.particles)
+          /max(solid_.particles, VSMALL);
     if (rampTime_ > 0)
     {
-        Info<< " (ramping in " << solid.ramp << ", "
+        Info<< " (ramping in " << solid_.ramp << ", "
             << label(state_.rampStart.size()) << " particles)";
     }
     Info<< nl;
@@ -317,9 +317,9 @@ void Foam::couplingDiagnostics::progress
         outCounts[k] = cloud_.outletTotal(k, mass);
     }
 
-    const scalar tComm = returnReduce(time.comm, maxOp<scalar>());
+    const scalar tComm = returnReduce(time_.comm, maxOp<scalar>());
     const scalar total =
-        max(time.dem + time.coupling + time.fluid + time.comm, VSMALL);
+        max(time_.dem + time_.coupling + time_.fluid + time_.comm, VSMALL);
     // percent done, rounded down; 100 only at the last step (the time
     // summed from the steps may end a rounding error below endTime)
     const bool last = tEnd - t < 0.5*runTime.deltaTValue();
@@ -341,12 +341,12 @@ void Foam::couplingDiagnostics::progress
     os  << ", lost " << lost << ")"
         << ", max overlap " << 0.001*std::round(1e5*maxOverlap)
         << " % of d"
-        << ", time DEM " << label(100*time.dem/total + 0.5)
-        << " % coupling " << label(100*time.coupling/total + 0.5)
-        << " % fluid " << label(100*time.fluid/total + 0.5) << " %";
+        << ", time DEM " << label(100*time_.dem/total + 0.5)
+        << " % coupling " << label(100*time_.coupling/total + 0.5)
+        << " % fluid " << label(100*time_.fluid/total + 0.5) << " %";
     if (Pstream::parRun())
     {
-        os  << " communication " << label(100*time.comm/total + 0.5)
+        os  << " communication " << label(100*time_.comm/total + 0.5)
             << " % (most on one processor " << label(100*tComm/total + 0.5)
             << " %), particle volume across processors "
             << int64_t(returnReduce(map_.haloParticleSteps(), sumOp<scalar>()))

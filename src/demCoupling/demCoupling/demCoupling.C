@@ -142,9 +142,9 @@ Foam::demCoupling::demCoupling
     ghosts_
     (
         world_, box_.periodic, box_.lo, box_.hi, insertion_.inletBoxes(),
-        insertion_.inletRadius(), diag_.time.comm
+        insertion_.inletRadius(), diag_.time().comm
     ),
-    decomposition_(mesh, world_, locator_, box_, diag_.time.comm),
+    decomposition_(mesh, world_, locator_, box_, diag_.time().comm),
     cloud_
     (
         mesh, world_, locator_, box_, decomposition_, state_,
@@ -153,7 +153,7 @@ Foam::demCoupling::demCoupling
     driving_(dict_.found("periodicDriving")),
     UsTarget_(Zero),
     drivingRelax_(0.2),
-    map_(mesh, locator_, diag_.time.comm),
+    map_(mesh, locator_, diag_.time().comm),
     eps_
     (
         fieldIO(mesh, "eps", true),
@@ -295,7 +295,7 @@ Foam::demCoupling::demCoupling
         << "formulation " << dict_.get<word>("formulation")
         << ", drag " << dict_.get<word>("dragModel")
         << (cellMeanDrag_ ? " (cell-mean)" : " (per particle)")
-        << ", solid volume " << diag_.solid.particles << " m3" << nl << endl;
+        << ", solid volume " << diag_.solid().particles << " m3" << nl << endl;
 
     // the progress estimate counts the coupled steps only (not the
     // settling and set-up before them)

@@ -120,8 +120,8 @@ void Foam::demCoupling::evolveFluid
 )
 {
     const auto tEvolve0 = std::chrono::steady_clock::now();
-    const scalar tDem0 = diag_.time.dem;
-    const scalar tComm0 = diag_.time.comm;
+    const scalar tDem0 = diag_.time().dem;
+    const scalar tComm0 = diag_.time().comm;
 
     const scalar dt = mesh_.time().deltaTValue();
     const label nDem = subSteps(dt);
@@ -160,12 +160,12 @@ void Foam::demCoupling::evolveFluid
     bed_.append();
 
     ++nSteps_;
-    diag_.time.coupling +=
+    diag_.time().coupling +=
         std::chrono::duration<scalar>
         (
             std::chrono::steady_clock::now() - tEvolve0
         ).count()
-      - (diag_.time.dem - tDem0) - (diag_.time.comm - tComm0);
+      - (diag_.time().dem - tDem0) - (diag_.time().comm - tComm0);
 
     report(false);
 }
@@ -343,14 +343,14 @@ bool Foam::demCoupling::subStep(stepData& sd)
                 a.v[0] = std::numeric_limits<double>::quiet_NaN();
             }
             const auto t0 = std::chrono::steady_clock::now();
-            const scalar tCommStep0 = diag_.time.comm;
+            const scalar tCommStep0 = diag_.time().comm;
             const dem_status st =
                 Pstream::parRun() ? ghosts_.step(m, failure_) : world_.tryStep(m);
-            diag_.time.dem += std::chrono::duration<scalar>
+            diag_.time().dem += std::chrono::duration<scalar>
             (
                 std::chrono::steady_clock::now() - t0
             ).count()
-              - (diag_.time.comm - tCommStep0);
+              - (diag_.time().comm - tCommStep0);
             if (st != DEM_OK)
             {
                 // (decomposed: set by processorGhosts::step, naming the processor)

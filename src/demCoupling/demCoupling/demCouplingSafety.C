@@ -44,7 +44,7 @@ void Foam::demCoupling::checkpoint()
     snapScalar_.setSize(2);
     snapScalar_[0] = Kc_.primitiveField();
     snapScalar_[1] = eta_.primitiveField();
-    diag_.time.coupling += std::chrono::duration<scalar>
+    diag_.time().coupling += std::chrono::duration<scalar>
     (
         std::chrono::steady_clock::now() - t0
     ).count();

@@ -46,8 +46,8 @@ void Foam::demCoupling::computeVoidage()
     const label nHalo = map_.nHalo();
     scalarField solidHalo(nHalo, 0);
     vectorField momHalo(nHalo, Zero);
-    scalar& solidParticles = diag_.solid.particles;
-    scalar& solidRamp = diag_.solid.ramp;
+    scalar& solidParticles = diag_.solid().particles;
+    scalar& solidRamp = diag_.solid().ramp;
     solidParticles = 0;
     solidRamp = 0;
     for (label i = 0; i < n; ++i)
@@ -61,7 +61,7 @@ void Foam::demCoupling::computeVoidage()
     }
     map_.haloAdd(solid, solidHalo);
     map_.haloAdd(mom, momHalo);
-    diag_.solid.mesh = gSum(solid);
+    diag_.solid().mesh = gSum(solid);
     reduce(solidParticles, sumOp<scalar>());
     reduce(solidRamp, sumOp<scalar>());
 
