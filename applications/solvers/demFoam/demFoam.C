@@ -85,11 +85,12 @@ int main(int argc, char *argv[])
 
         // The DEM part of the step, with the fluid fields of the last step
         {
+            // div tau: the fluid equation's own stress operator applied to
+            // U, Reynolds stresses included (docs/theory.md section 2)
             const volVectorField divTau
             (
                 "divTau",
-                fvc::div(turbulence->nuEff()*dev2(T(fvc::grad(U))))
-              + fvc::laplacian(turbulence->nuEff(), U)
+                -(turbulence->divDevReff(U) & U)
             );
             dem.evolve(U, p, divTau, laminarTransport.nu()());
         }

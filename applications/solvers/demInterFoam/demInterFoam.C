@@ -99,12 +99,12 @@ int main(int argc, char *argv[])
         // The DEM part of the step, with the fluid fields of the last step:
         // p, div tau [N/m3], the mixture's mu and rho
         {
-            const volScalarField muEff("muEff", rho*turbulence->nuEff());
+            // div tau: the fluid equation's own stress operator applied to
+            // U, Reynolds stresses included (docs/theory.md section 10)
             const volVectorField divTau
             (
                 "divTau",
-                fvc::div(muEff*dev2(T(fvc::grad(U))))
-              + fvc::laplacian(muEff, U)
+                -(turbulence->divDevRhoReff(rho, U) & U)
             );
             dem.evolve(U, p, divTau, mixture.mu()(), rho);
         }
