@@ -9,10 +9,59 @@
 #include "emptyPolyPatch.H"
 #include "wallPolyPatch.H"
 #include "processorPolyPatch.H"
+#include "globalMeshData.H"
+#include "globalIndex.H"
 
 using Foam::demTools::joinAll;
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+void Foam::patchWalls::mergeAcrossProcessors
+(
+    const fvMesh& mesh,
+    const polyPatch& pp,
+    DynamicList<double>& verts,
+    DynamicList<int>& tris
+)
+{
+    // this processor's vertices: the patch's local points, then the face
+    // centres added for degenerate faces
+    const label nLocal = pp.nPoints();
+    const label nCentre = label(verts.size()/3) - nLocal;
+
+    // a point on several processors' patches gets one global number
+    // (OpenFOAM's point coupling, no tolerance): the merged points of all
+    // processors in processor order, then all face centres
+    labelList pointToGlobal, uniqueMeshPoints;
+    const autoPtr<globalIndex> merged
+    (
+        mesh.globalData().mergePoints
+        (
+            pp.meshPoints(), pp.meshPointMap(), pointToGlobal,
+            uniqueMeshPoints
+        )
+    );
+    const globalIndex centres(nCentre);
+    const label centreStart = merged().size() + centres.offset(Pstream::myProcNo());
+    for (int& t : tris)
+    {
+        t = int(t < nLocal ? pointToGlobal[t] : centreStart + t - nLocal);
+    }
+
+    DynamicList<double> mine(3*uniqueMeshPoints.size());
+    for (const label pointi : uniqueMeshPoints)
+    {
+        const point& x = mesh.points()[pointi];
+        mine.append(x.x()); mine.append(x.y()); mine.append(x.z());
+    }
+    DynamicList<double> myCentres(3*nCentre);
+    for (label k = 3*nLocal; k < verts.size(); ++k) myCentres.append(verts[k]);
+
+    verts = demTools::joinAll(mine);
+    verts.append(demTools::joinAll(myCentres));
+    tris = demTools::joinAll(tris);
+}
+
 
 void Foam::patchWalls::add
 (
@@ -129,17 +178,7 @@ void Foam::patchWalls::add
             }
             if (Pstream::parRun())
             {
-                // vertex indices of each processor shifted by the vertices
-                // of the processors before it
-                labelList nv(Pstream::nProcs(), 0);
-                nv[Pstream::myProcNo()] = verts.size()/3;
-                Pstream::gatherList(nv);
-                Pstream::scatterList(nv);
-                label shift = 0;
-                for (label r = 0; r < Pstream::myProcNo(); ++r) shift += nv[r];
-                for (int& t : tris) t += int(shift);
-                verts = joinAll(verts);
-                tris = joinAll(tris);
+                mergeAcrossProcessors(mesh, pp, verts, tris);
             }
             int id;
             world.check

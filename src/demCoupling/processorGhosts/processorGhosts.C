@@ -22,8 +22,26 @@ using namespace Foam::demTools;
 
 // * * * * * * * * * * * * * * * * Helpers * * * * * * * * * * * * * * * * //
 
+// MPI's profiling hook, a no-op unless a profiling library is loaded
+// (bin/tools/mpiMessageCount counts the messages between the marks)
+extern "C" int MPI_Pcontrol(const int level, ...) __attribute__((weak));
+
 namespace
 {
+    // Marks the DEM sub-steps for a profiling library: MPI_Pcontrol(2, m)
+    // on entry (m DEM steps follow), MPI_Pcontrol(1) on exit
+    struct subStepMark
+    {
+        explicit subStepMark(const int m)
+        {
+            if (MPI_Pcontrol) MPI_Pcontrol(2, m);
+        }
+        ~subStepMark()
+        {
+            if (MPI_Pcontrol) MPI_Pcontrol(1);
+        }
+    };
+
     // Distance from x to the interval [lo, hi] of one axis; a periodic axis
     // (period L) takes the nearest image
     Foam::scalar axisGap
@@ -315,6 +333,8 @@ void Foam::processorGhosts::forward()
 
 dem_status Foam::processorGhosts::step(const label m, std::string& failure)
 {
+    const subStepMark mark(static_cast<int>(m));
+
     // the first failure on any processor stops all of them at the same
     // point, each with that processor's message
     auto agree = [&](const dem_status st) -> dem_status
