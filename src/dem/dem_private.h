@@ -40,6 +40,8 @@ dem_status dem_fail_(const dem_world *w, dem_status code, const char *file, int 
 #endif
     ;
 #define DEM_FAIL(w, code, ...) dem_fail_((w), (code), __FILE__, __LINE__, __VA_ARGS__)
+/* The text of w's last error message after "file:line: status: ". */
+const char *dem_error_detail(const dem_world *w);
 /* A required pointer argument: DEM_ERR_ARG naming the function and argument. */
 #define DEM_NEED(w, ptr, fn) do { if (!(ptr)) return DEM_FAIL((w), DEM_ERR_ARG, \
     "%s: %s is NULL; a valid pointer is required", (fn), #ptr); } while (0)
@@ -280,6 +282,8 @@ dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayle
 double     dem_hertz_time(double meff, double rstar, double estar, double v);
 dem_status dem_remove_booked(dem_world *w, size_t i, int outlet);
 dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const char *fn);
+/* Checks of a restored state (stateCheck.c): 1 (message in err) if unusable */
+int        dem_state_check(dem_world *w, dem_world *err, const char *path);
 
 /* restitution <-> damping mappings (restitution.c) */
 double dem_hm_restitution(double cn);          /* e(c_n), Hertz-Mindlin of [Z] */
