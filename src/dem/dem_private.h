@@ -268,6 +268,7 @@ dem_status dem_room_for(dem_world *w, size_t n, const char *what);
 int        dem_mass_ok(double radius, double density);
 int        dem_inertia_ok(double mass, double radius);
 dem_status dem_inlet_check(dem_world *w, const dem_inlet *in, const char *what);
+dem_status dem_template_check(dem_world *w, const dem_particle_template *t, double *dmax, const char *fn);
 dem_status dem_config_check(dem_world *w, const dem_config *c);
 /* Whether m is rigid (DEM_RIGID) under the law */
 int dem_material_rigid(const dem_material *m, int law);
