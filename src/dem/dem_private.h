@@ -228,7 +228,7 @@ struct dem_world {
     int drift_pending;       /* 1 between a drift and its force half */
     double drift_d2max;      /* largest squared displacement since the list build, at the drift */
     double hdt;              /* history increment of the current force evaluation */
-    void *scratch;           /* per-row contact buffer of the phased Hertz-Mindlin loop */
+    void *scratch;           /* contact buffers of the phased pair loops (contactKernel.h) */
     size_t capscratch;       /* entries */
     /* per-contact record (dem_world_record_contacts, dem_world_contacts) */
     int crec_on;             /* the user asked for recording */
