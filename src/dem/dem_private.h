@@ -40,6 +40,8 @@ dem_status dem_fail_(const dem_world *w, dem_status code, const char *file, int 
 #endif
     ;
 #define DEM_FAIL(w, code, ...) dem_fail_((w), (code), __FILE__, __LINE__, __VA_ARGS__)
+/* The text of w's last error message after "file:line: status: ". */
+const char *dem_error_detail(const dem_world *w);
 /* A required pointer argument: DEM_ERR_ARG naming the function and argument. */
 #define DEM_NEED(w, ptr, fn) do { if (!(ptr)) return DEM_FAIL((w), DEM_ERR_ARG, \
     "%s: %s is NULL; a valid pointer is required", (fn), #ptr); } while (0)
@@ -226,7 +228,7 @@ struct dem_world {
     int drift_pending;       /* 1 between a drift and its force half */
     double drift_d2max;      /* largest squared displacement since the list build, at the drift */
     double hdt;              /* history increment of the current force evaluation */
-    void *scratch;           /* per-row contact buffer of the phased Hertz-Mindlin loop */
+    void *scratch;           /* contact buffers of the phased pair loops (contactKernel.h) */
     size_t capscratch;       /* entries */
     /* per-contact record (dem_world_record_contacts, dem_world_contacts) */
     int crec_on;             /* the user asked for recording */
@@ -266,6 +268,7 @@ dem_status dem_room_for(dem_world *w, size_t n, const char *what);
 int        dem_mass_ok(double radius, double density);
 int        dem_inertia_ok(double mass, double radius);
 dem_status dem_inlet_check(dem_world *w, const dem_inlet *in, const char *what);
+dem_status dem_template_check(dem_world *w, const dem_particle_template *t, double *dmax, const char *fn);
 dem_status dem_config_check(dem_world *w, const dem_config *c);
 /* Whether m is rigid (DEM_RIGID) under the law */
 int dem_material_rigid(const dem_material *m, int law);
@@ -280,6 +283,8 @@ dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayle
 double     dem_hertz_time(double meff, double rstar, double estar, double v);
 dem_status dem_remove_booked(dem_world *w, size_t i, int outlet);
 dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const char *fn);
+/* Checks of a restored state (stateCheck.c): 1 (message in err) if unusable */
+int        dem_state_check(dem_world *w, dem_world *err, const char *path);
 
 /* restitution <-> damping mappings (restitution.c) */
 double dem_hm_restitution(double cn);          /* e(c_n), Hertz-Mindlin of [Z] */

@@ -58,3 +58,11 @@ void dem_world_set_logger(dem_world *w, dem_log_fn fn, void *user)
     w->log = fn;
     w->log_user = user;
 }
+
+/* The text of an error message after "file:line: status: ". */
+const char *dem_error_detail(const dem_world *w)
+{
+    const char *p = strstr(w->err, ": ");
+    if (p) p = strstr(p + 2, ": ");
+    return p ? p + 2 : w->err;
+}

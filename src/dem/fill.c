@@ -1,0 +1,245 @@
+/*---------------------------------------------------------------------------*\
+  demFoam DEM core - filling a region (box, cylinder) with particles.
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+
+  Region filling is random sequential addition: each particle (size and
+  density drawn from the template's distributions) is tried at up to
+  DEM_FILL_TRIES random positions inside the region and accepted if it
+  overlaps neither an existing particle nor one placed before it (checked
+  on a private linked-cell grid).  Seeded by dem_config.seed: deterministic.
+\*---------------------------------------------------------------------------*/
+#include "dem_private.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DEM_FILL_TRIES 1000   /* attempts per particle before giving up */
+
+/*--- private placement grid -----------------------------------------------------*/
+typedef struct {
+    double lo[3], cs; int nc[3];
+    int *head, *next; double *xr; /* x, y, z, r per item */
+    size_t n, cap;
+} pgrid;
+
+static int pgrid_init(pgrid *g, const double lo[3], const double hi[3], double cs, size_t expect)
+{
+    memset(g, 0, sizeof *g);
+    g->cs = cs;
+    double tot = 1, m[3];
+    for (int k = 0; k < 3; ++k) {
+        g->lo[k] = lo[k];
+        m[k] = ceil((hi[k] - lo[k]) / cs);
+        if (!(m[k] >= 1)) m[k] = 1;
+        tot *= m[k];
+    }
+    while (tot > 4.0 * (double)expect + 1e6) { /* keep the grid bounded */
+        g->cs *= 1.5;
+        tot = 1;
+        for (int k = 0; k < 3; ++k) {
+            m[k] = ceil((hi[k] - lo[k]) / g->cs);
+            if (!(m[k] >= 1)) m[k] = 1;
+            tot *= m[k];
+        }
+    }
+    for (int k = 0; k < 3; ++k) g->nc[k] = (int)m[k]; /* <= tot, bounded above */
+    g->head = malloc((size_t)tot * sizeof(int));
+    g->cap = expect + 16;
+    g->next = malloc(g->cap * sizeof(int));
+    g->xr = malloc(4 * g->cap * sizeof(double));
+    if (!g->head || !g->next || !g->xr) return 0;
+    for (size_t c = 0; c < (size_t)tot; ++c) g->head[c] = -1;
+    return 1;
+}
+static void pgrid_free(pgrid *g) { free(g->head); free(g->next); free(g->xr); }
+static void pgrid_cell(const pgrid *g, const double *x, int c[3])
+{
+    for (int k = 0; k < 3; ++k) {
+        double q = floor((x[k] - g->lo[k]) / g->cs);
+        c[k] = q >= 0 ? (q < g->nc[k] ? (int)q : g->nc[k] - 1) : 0; /* clamped before the cast (NaN: 0) */
+    }
+}
+static int pgrid_add(pgrid *g, const double *x, double r)
+{
+    if (g->n == g->cap) {
+        size_t nc = 2 * g->cap;
+        int *a = realloc(g->next, nc * sizeof(int));
+        if (!a) return 0;
+        g->next = a;
+        double *b = realloc(g->xr, 4 * nc * sizeof(double));
+        if (!b) return 0;
+        g->xr = b;
+        g->cap = nc;
+    }
+    int c[3];
+    pgrid_cell(g, x, c);
+    size_t ci = (size_t)c[0] + (size_t)g->nc[0] * ((size_t)c[1] + (size_t)g->nc[1] * (size_t)c[2]);
+    double *p = g->xr + 4 * g->n;
+    p[0] = x[0]; p[1] = x[1]; p[2] = x[2]; p[3] = r;
+    g->next[g->n] = g->head[ci];
+    g->head[ci] = (int)g->n;
+    g->n++;
+    return 1;
+}
+/* 1 if a sphere (x, r) overlaps nothing in the grid (cell >= 2 r_max). */
+static int pgrid_free_at(const pgrid *g, const double *x, double r)
+{
+    int c[3];
+    pgrid_cell(g, x, c);
+    for (int dz = -1; dz <= 1; ++dz) {
+        int cz = c[2] + dz; if (cz < 0 || cz >= g->nc[2]) continue;
+        for (int dy = -1; dy <= 1; ++dy) {
+            int cy = c[1] + dy; if (cy < 0 || cy >= g->nc[1]) continue;
+            for (int dx = -1; dx <= 1; ++dx) {
+                int cx = c[0] + dx; if (cx < 0 || cx >= g->nc[0]) continue;
+                size_t ci = (size_t)cx + (size_t)g->nc[0] * ((size_t)cy + (size_t)g->nc[1] * (size_t)cz);
+                for (int it = g->head[ci]; it >= 0; it = g->next[it]) {
+                    const double *p = g->xr + 4 * (size_t)it;
+                    double d0 = x[0] - p[0], d1 = x[1] - p[1], d2 = x[2] - p[2], s = r + p[3];
+                    if (d0 * d0 + d1 * d1 + d2 * d2 < s * s) return 0;
+                }
+            }
+        }
+    }
+    return 1;
+}
+
+/* Region description for the generic filler. */
+typedef struct {
+    int kind; /* 0 box, 1 cylinder */
+    double lo[3], hi[3];
+    dem_inside_fn inside; void *user;
+    double base[3], e1[3], e2[3], ax[3], R, L;
+} region;
+
+static int sample(dem_world *w, const region *rg, double r, double x[3])
+{
+    if (rg->kind == 0) {
+        for (int k = 0; k < 3; ++k) {
+            double span = rg->hi[k] - rg->lo[k] - 2.0 * r;
+            if (span < 0) return 0;
+            x[k] = rg->lo[k] + r + span * dem_rng_uniform(w);
+        }
+        if (rg->inside && !rg->inside(x, rg->user)) return -1;
+        return 1;
+    }
+    double rho = rg->R - r, hl = rg->L - 2.0 * r;
+    if (rho < 0 || hl < 0) return 0;
+    double u, v;
+    do { u = 2.0 * dem_rng_uniform(w) - 1.0; v = 2.0 * dem_rng_uniform(w) - 1.0; } while (u * u + v * v > 1.0);
+    double hh = r + hl * dem_rng_uniform(w);
+    for (int k = 0; k < 3; ++k) x[k] = rg->base[k] + rho * (u * rg->e1[k] + v * rg->e2[k]) + hh * rg->ax[k];
+    return 1;
+}
+
+static dem_status fill(dem_world *w, const region *rg, size_t n, const dem_particle_template *t,
+                       size_t *inserted)
+{
+    if (inserted) *inserted = 0;
+    double dmax;
+    dem_status s = dem_template_check(w, t, &dmax, rg->kind == 0 ? "fill_box" : "fill_cylinder");
+    if (s) return s;
+    if ((s = dem_room_for(w, n, rg->kind == 0 ? "fill_box" : "fill_cylinder"))) return s;
+    if (n == 0) return DEM_OK;
+    double amax = 0.5 * dmax;
+    for (size_t i = 0; i < w->n; ++i) amax = fmax(amax, w->rad[i]);
+    pgrid g;
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) { lo[k] = rg->lo[k] - 2 * amax; hi[k] = rg->hi[k] + 2 * amax; }
+    if (!pgrid_init(&g, lo, hi, 2.0 * amax, n + w->n)) { pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
+    for (size_t i = 0; i < w->n; ++i) {
+        const double *x = w->x + 3 * i;
+        int in = 1;
+        for (int k = 0; k < 3; ++k) in = in && x[k] > lo[k] && x[k] < hi[k];
+        if (in && !pgrid_add(&g, x, w->rad[i])) { pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
+    }
+    s = dem_reserve(w, w->n + w->ng + n);
+    if (s) { pgrid_free(&g); return s; }
+    size_t done = 0;
+    for (size_t q = 0; q < n; ++q) {
+        double d = dem_dist_draw(w, &t->diameter), rho = dem_dist_draw(w, &t->density), r = 0.5 * d;
+        double x[3];
+        int ok = 0;
+        for (int tr = 0; tr < DEM_FILL_TRIES && !ok; ++tr) {
+            int sm = sample(w, rg, r, x);
+            if (sm == 0) break;
+            if (sm < 0) continue;
+            ok = pgrid_free_at(&g, x, r);
+        }
+        if (!ok) break;
+        if (!pgrid_add(&g, x, r)) { pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
+        dem_particle p;
+        memset(&p, 0, sizeof p);
+        p.id = -1;
+        memcpy(p.x, x, sizeof x);
+        memcpy(p.v, t->velocity, sizeof p.v);
+        p.radius = r; p.density = rho; p.material = t->material;
+        s = dem_append_particle(w, &p);
+        if (s) { pgrid_free(&g); return s; }
+        w->inserted++;
+        done++;
+    }
+    pgrid_free(&g);
+    if (inserted) *inserted = done;
+    if (done < n)
+        return DEM_FAIL(w, DEM_ERR_FULL, "placed %zu of %zu particles (%d attempts each)", done, n, DEM_FILL_TRIES);
+    return DEM_OK;
+}
+
+dem_status dem_world_fill_box(dem_world *w, const double lo[3], const double hi[3],
+                              dem_inside_fn inside, void *user, size_t n,
+                              const dem_particle_template *t, size_t *inserted)
+{
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, lo, "fill_box");
+    DEM_NEED(w, hi, "fill_box");
+    region rg;
+    memset(&rg, 0, sizeof rg);
+    for (int k = 0; k < 3; ++k) {
+        if (!(hi[k] > lo[k]) || !isfinite(hi[k] - lo[k]))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "fill_box: lo[%d] = %g, hi[%d] = %g; need finite lo < hi with a "
+                            "finite difference", k, lo[k], k, hi[k]);
+        rg.lo[k] = lo[k]; rg.hi[k] = hi[k];
+    }
+    rg.inside = inside; rg.user = user;
+    return fill(w, &rg, n, t, inserted);
+}
+
+dem_status dem_world_fill_cylinder(dem_world *w, const double base[3], const double axis[3],
+                                   double radius, double length, size_t n,
+                                   const dem_particle_template *t, size_t *inserted)
+{
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, base, "fill_cylinder");
+    DEM_NEED(w, axis, "fill_cylinder");
+    double al = sqrt(dem_dot(axis, axis));
+    if (!(al > 0) || !isfinite(al))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: axis (%g %g %g); need finite, with a length > 0 "
+                        "and finite", axis[0], axis[1], axis[2]);
+    if (!(radius > 0) || !(length > 0) || !isfinite(radius) || !isfinite(length))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: radius = %g, length = %g; need > 0 and finite", radius, length);
+    for (int k = 0; k < 3; ++k)
+        if (!isfinite(base[k]))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: base[%d] = %g; must be finite", k, base[k]);
+    region rg;
+    memset(&rg, 0, sizeof rg);
+    rg.kind = 1;
+    rg.R = radius; rg.L = length;
+    for (int k = 0; k < 3; ++k) { rg.base[k] = base[k]; rg.ax[k] = axis[k] / al; }
+    double tmp[3] = {1, 0, 0};
+    if (fabs(rg.ax[0]) > 0.9) { tmp[0] = 0; tmp[1] = 1; }
+    dem_cross(rg.ax, tmp, rg.e1);
+    double l1 = sqrt(dem_dot(rg.e1, rg.e1));
+    for (int k = 0; k < 3; ++k) rg.e1[k] /= l1;
+    dem_cross(rg.ax, rg.e1, rg.e2);
+    for (int k = 0; k < 3; ++k) {
+        double top = base[k] + length * rg.ax[k];
+        rg.lo[k] = fmin(base[k], top) - radius;
+        rg.hi[k] = fmax(base[k], top) + radius;
+        if (!isfinite(rg.hi[k] - rg.lo[k]))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: base (%g %g %g), radius = %g, length = %g; the "
+                            "bounding box must be finite", base[0], base[1], base[2], radius, length);
+    }
+    return fill(w, &rg, n, t, inserted);
+}

@@ -1,0 +1,259 @@
+/*---------------------------------------------------------------------------*\
+  demFoam DEM core - particle packing for domain decomposition: one particle
+  (with its contact history) or a ghost into a buffer and back.
+  Copyright (C) 2026 the demFoam authors
+  License: GPL-3.0-or-later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+#include "dem_private.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Layout: uint32 magic | uint32 npair | uint32 nwall | uint32 flags |
+ *         int64 id | double x,v,w,f,t (15) | radius, mass, density |
+ *         int material | int pad | double fext,text (6), K, u (3), J (3), added mass |
+ *         npair x (int64 partner id, double h[3])  (h oriented as seen from this particle)
+ *         nwall x (int wall, int tri, double h[3])                                      */
+#define PACK_MAGIC 0x444d5032u /* "DMP2" (2: added mass) */
+typedef struct {
+    uint32_t magic, npair, nwall, flags;
+    int64_t id;
+    double xvwft[15], rad, mass, rho;
+    int32_t mat, pad;
+    double ext[14];
+} pack_head;
+typedef struct { int64_t partner; double h[3]; } pack_pair;
+typedef struct { int32_t wall, tri; double h[3]; } pack_wall;
+
+/* row -> particle index (inverse of list_index); NULL if identity */
+static int *row_owner(const dem_world *w)
+{
+    if (w->list_valid) return NULL;
+    int *inv = malloc((w->nrows + 1) * sizeof(int));
+    if (!inv) return NULL;
+    for (size_t r = 0; r < w->nrows; ++r) inv[r] = -1;
+    for (size_t p = 0; p < w->n + w->ng; ++p) {
+        int r = w->list_index[p];
+        if (r >= 0 && (size_t)r < w->nrows) inv[r] = (int)p;
+    }
+    return inv;
+}
+
+/* pack_particle (hist = 1) and pack_ghost (hist = 0: no contact history) */
+static dem_status pack(const dem_world *w, size_t index, void *buf, size_t *size, int hist, const char *fn)
+{
+    DEM_NEED(w, size, fn);
+    if (index >= w->n + w->ng)
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: index %zu; allowed below %zu (owned + ghost particles)",
+                        fn, index, w->n + w->ng);
+    int *inv = hist ? row_owner(w) : NULL;
+    if (hist && !w->list_valid && !inv && w->nrows)
+        return DEM_FAIL(w, DEM_ERR_NOMEM, "%s: row map", fn);
+#define OWNER(r) (inv ? inv[(r)] : (int)(r))
+    int row = hist && w->nb_off ? w->list_index[index] : -1;
+    if ((size_t)row >= w->nrows) row = -1;
+    uint32_t npair = 0, nwall = 0;
+    pack_head hd;
+    memset(&hd, 0, sizeof hd);
+    /* count */
+    for (int pass = 0; pass < 2; ++pass) {
+        char *out = buf ? (char *)buf + sizeof hd : NULL;
+        npair = nwall = 0;
+        if (row >= 0) {
+            for (size_t r = 0; r < w->nrows; ++r) {
+                for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
+                    const double *h = w->nb_h + 3 * (size_t)k;
+                    if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+                    int other, sign;
+                    if ((int)r == row) { other = w->nb_j[k]; sign = 1; }
+                    else if (w->nb_j[k] == row) { other = (int)r; sign = -1; }
+                    else continue;
+                    int po = OWNER(other);
+                    if (po < 0) continue;
+                    if (pass == 1 && out) {
+                        pack_pair pp;
+                        pp.partner = w->id[po];
+                        for (int c = 0; c < 3; ++c) pp.h[c] = sign * h[c];
+                        memcpy(out + (size_t)npair * sizeof pp, &pp, sizeof pp);
+                    }
+                    npair++;
+                }
+            }
+            if (w->wc_off) {
+                char *wout = out ? out + (size_t)npair * sizeof(pack_pair) : NULL;
+                for (int k = w->wc_off[row]; k < w->wc_off[row + 1]; ++k) {
+                    const double *h = w->wc_h + 3 * (size_t)k;
+                    if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+                    if (pass == 1 && wout) {
+                        pack_wall pw;
+                        pw.wall = w->wc_wall[k]; pw.tri = w->wc_tri[k];
+                        memcpy(pw.h, h, sizeof pw.h);
+                        memcpy(wout + (size_t)nwall * sizeof pw, &pw, sizeof pw);
+                    }
+                    nwall++;
+                }
+            }
+        }
+        if (pass == 0) {
+            size_t need = sizeof hd + npair * sizeof(pack_pair) + nwall * sizeof(pack_wall);
+            if (!buf) { *size = need; free(inv); return DEM_OK; }
+            if (*size < need) {
+                free(inv);
+                return DEM_FAIL(w, DEM_ERR_RANGE, "%s: *size = %zu bytes; need %zu", fn, *size, need);
+            }
+            *size = need;
+        }
+    }
+#undef OWNER
+    free(inv);
+    hd.magic = PACK_MAGIC; hd.npair = npair; hd.nwall = nwall;
+    hd.id = w->id[index];
+    for (int c = 0; c < 3; ++c) {
+        hd.xvwft[c] = w->x[3 * index + c]; hd.xvwft[3 + c] = w->v[3 * index + c];
+        hd.xvwft[6 + c] = w->w[3 * index + c]; hd.xvwft[9 + c] = w->f[3 * index + c];
+        hd.xvwft[12 + c] = w->t[3 * index + c];
+    }
+    hd.rad = w->rad[index]; hd.mass = w->mass[index]; hd.rho = w->rho[index]; hd.mat = w->mat_of[index];
+    if (w->have_ext) {
+        hd.flags = 1;
+        for (int c = 0; c < 3; ++c) {
+            hd.ext[c] = w->fext[3 * index + c]; hd.ext[3 + c] = w->text[3 * index + c];
+            hd.ext[7 + c] = w->uf[3 * index + c]; hd.ext[10 + c] = w->J[3 * index + c];
+        }
+        hd.ext[6] = w->K[index];
+        hd.ext[13] = w->Ma[index];
+    }
+    memcpy(buf, &hd, sizeof hd);
+    return DEM_OK;
+}
+
+dem_status dem_world_pack_particle(const dem_world *w, size_t index, void *buf, size_t *size)
+{
+    if (!w) return DEM_ERR_ARG;
+    return pack(w, index, buf, size, 1, "pack_particle");
+}
+
+dem_status dem_world_pack_ghost(const dem_world *w, size_t index, void *buf, size_t *size)
+{
+    if (!w) return DEM_ERR_ARG;
+    return pack(w, index, buf, size, 0, "pack_ghost");
+}
+
+dem_status dem_world_unpack_particle(dem_world *w, const void *buf, size_t size, int ghost)
+{
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, buf, "unpack_particle");
+    pack_head hd;
+    if (size < sizeof hd)
+        return DEM_FAIL(w, DEM_ERR_FORMAT, "unpack_particle: size = %zu bytes; the header alone needs %zu", size, sizeof hd);
+    memcpy(&hd, buf, sizeof hd);
+    size_t need = sizeof hd + hd.npair * sizeof(pack_pair) + hd.nwall * sizeof(pack_wall);
+    if (hd.magic != PACK_MAGIC)
+        return DEM_FAIL(w, DEM_ERR_FORMAT, "unpack_particle: magic 0x%08x; need 0x%08x (not a packed particle)",
+                        hd.magic, PACK_MAGIC);
+    if (size < need)
+        return DEM_FAIL(w, DEM_ERR_FORMAT, "unpack_particle: size = %zu bytes; %u contacts and %u wall contacts "
+                        "need %zu", size, hd.npair, hd.nwall, need);
+    if (hd.mat < 0 || hd.mat >= w->nmat)
+        return DEM_FAIL(w, DEM_ERR_NOTFOUND, "unpack_particle: particle id %lld has material %d; allowed 0..%d "
+                        "(%d materials defined)", (long long)hd.id, hd.mat, w->nmat - 1, w->nmat);
+    /* everything is checked before anything is stored */
+    if (hd.id < 0 || hd.id == INT64_MAX)
+        return DEM_FAIL(w, DEM_ERR_FORMAT, "unpack_particle: id %lld; allowed 0..%lld", (long long)hd.id,
+                        (long long)(INT64_MAX - 1));
+    for (int c = 0; c < 15; ++c)
+        if (!isfinite(hd.xvwft[c]))
+            return DEM_FAIL(w, DEM_ERR_NAN, "unpack_particle: id %lld: %s[%d] = %g; must be finite", (long long)hd.id,
+                            (const char *[]){"x", "v", "omega", "force", "torque"}[c / 3], c % 3, hd.xvwft[c]);
+    if (!(hd.rad > 0) || !(hd.rho > 0) || !isfinite(hd.rho) || !dem_inertia_ok(hd.mass, hd.rad))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "unpack_particle: id %lld: radius = %g, mass = %g, density = %g; need "
+                        "positive finite values (mass and moment of inertia normal doubles)", (long long)hd.id,
+                        hd.rad, hd.mass, hd.rho);
+    for (int c = 0; c < 14; ++c)
+        if (!isfinite(hd.ext[c]) || ((c == 6 || c == 13) && hd.ext[c] < 0))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "unpack_particle: id %lld: coupling value %d = %g; need finite "
+                            "(drag_coeff and added_mass >= 0)", (long long)hd.id, c, hd.ext[c]);
+    const char *body = (const char *)buf + sizeof hd;
+    for (uint32_t k = 0; k < hd.npair; ++k) {
+        pack_pair pp;
+        memcpy(&pp, body + (size_t)k * sizeof pp, sizeof pp);
+        if (!isfinite(pp.h[0]) || !isfinite(pp.h[1]) || !isfinite(pp.h[2]))
+            return DEM_FAIL(w, DEM_ERR_NAN, "unpack_particle: id %lld: contact %u with id %lld has a non-finite "
+                            "history", (long long)hd.id, k, (long long)pp.partner);
+    }
+    for (uint32_t k = 0; k < hd.nwall && !ghost; ++k) {
+        pack_wall pw;
+        memcpy(&pw, body + (size_t)hd.npair * sizeof(pack_pair) + (size_t)k * sizeof pw, sizeof pw);
+        if (!isfinite(pw.h[0]) || !isfinite(pw.h[1]) || !isfinite(pw.h[2]))
+            return DEM_FAIL(w, DEM_ERR_NAN, "unpack_particle: id %lld: wall contact %u has a non-finite history",
+                            (long long)hd.id, k);
+    }
+    dem_status s = dem_room_for(w, 1, "unpack_particle");
+    if (s) return s;
+    /* room for the pending contacts first: no failure after the particle is stored */
+    if (hd.npair && w->npend + hd.npair > w->cappend) {
+        size_t nc = w->cappend ? 2 * w->cappend : 64;
+        while (nc < w->npend + hd.npair) nc *= 2;
+        dem_pending *q = realloc(w->pend, nc * sizeof *q);
+        if (!q) return DEM_FAIL(w, DEM_ERR_NOMEM, "unpack_particle: %zu pending contacts", nc);
+        w->pend = q; w->cappend = nc;
+    }
+    if (!ghost && hd.nwall && w->nwpend + hd.nwall > w->capwpend) {
+        size_t nc = w->capwpend ? 2 * w->capwpend : 64;
+        while (nc < w->nwpend + hd.nwall) nc *= 2;
+        dem_wpending *q = realloc(w->wpend, nc * sizeof *q);
+        if (!q) return DEM_FAIL(w, DEM_ERR_NOMEM, "unpack_particle: %zu pending wall contacts", nc);
+        w->wpend = q; w->capwpend = nc;
+    }
+    size_t i;
+    if (!ghost) {
+        dem_particle p;
+        memset(&p, 0, sizeof p);
+        p.id = hd.id;
+        for (int c = 0; c < 3; ++c) { p.x[c] = hd.xvwft[c]; p.v[c] = hd.xvwft[3 + c]; p.omega[c] = hd.xvwft[6 + c]; }
+        p.radius = hd.rad; p.density = hd.rho; p.material = hd.mat;
+        if ((s = dem_append_particle(w, &p))) return s;
+        i = w->n - 1;
+    } else {
+        if ((s = dem_reserve(w, w->n + w->ng + 1))) return s;
+        i = w->n + w->ng;
+        w->id[i] = hd.id;
+        for (int c = 0; c < 3; ++c) {
+            w->x[3 * i + c] = hd.xvwft[c]; w->v[3 * i + c] = hd.xvwft[3 + c]; w->w[3 * i + c] = hd.xvwft[6 + c];
+            w->x0[3 * i + c] = (float)hd.xvwft[c];
+        }
+        w->rad[i] = hd.rad; w->rho[i] = hd.rho; w->mat_of[i] = hd.mat;
+        w->list_index[i] = -1;
+        w->ng++;
+        w->list_valid = 0;
+        w->reorders++;
+        if (hd.id >= w->next_id) w->next_id = hd.id + 1;
+    }
+    w->mass[i] = hd.mass;
+    for (int c = 0; c < 3; ++c) { w->f[3 * i + c] = hd.xvwft[9 + c]; w->t[3 * i + c] = hd.xvwft[12 + c]; }
+    if (w->have_ext) {
+        for (int c = 0; c < 3; ++c) {
+            w->fext[3 * i + c] = hd.ext[c]; w->text[3 * i + c] = hd.ext[3 + c];
+            w->uf[3 * i + c] = hd.ext[7 + c]; w->J[3 * i + c] = hd.ext[10 + c];
+        }
+        w->K[i] = hd.ext[6];
+        w->Ma[i] = hd.ext[13];
+    }
+    const char *p = (const char *)buf + sizeof hd;
+    for (uint32_t k = 0; k < hd.npair; ++k) {
+        pack_pair pp;
+        memcpy(&pp, p + (size_t)k * sizeof pp, sizeof pp);
+        dem_pending *d = &w->pend[w->npend++];
+        d->ia = hd.id; d->ib = pp.partner;
+        memcpy(d->h, pp.h, sizeof d->h);
+    }
+    p += (size_t)hd.npair * sizeof(pack_pair);
+    for (uint32_t k = 0; k < hd.nwall && !ghost; ++k) {
+        pack_wall pw;
+        memcpy(&pw, p + (size_t)k * sizeof pw, sizeof pw);
+        dem_wpending *d = &w->wpend[w->nwpend++];
+        d->id = hd.id; d->wall = pw.wall; d->tri = pw.tri;
+        memcpy(d->h, pw.h, sizeof d->h);
+    }
+    return DEM_OK;
+}
