@@ -61,6 +61,7 @@ int main(int argc, char *argv[])
     #include "createControl.H"
     #include "createTimeControls.H"
     #include "createFields.H"
+    #include "demDeltaTRead.H"
     #include "initContinuityErrs.H"
 
     if (args.found("checkInput"))
@@ -79,7 +80,7 @@ int main(int argc, char *argv[])
     {
         #include "readTimeControls.H"
         #include "CourantNo.H"
-        #include "setDeltaT.H"
+        #include "demDeltaT.H"      // setDeltaT.H in whole DEM steps
 
         #include "runControlStep.H"
 

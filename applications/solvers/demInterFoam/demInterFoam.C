@@ -73,6 +73,7 @@ int main(int argc, char *argv[])
     #include "createControl.H"
     #include "createTimeControls.H"
     #include "createFields.H"
+    #include "demDeltaTRead.H"
     #include "initContinuityErrs.H"
 
     if (args.found("checkInput"))
@@ -92,7 +93,7 @@ int main(int argc, char *argv[])
         #include "readTimeControls.H"
         #include "CourantNo.H"
         #include "interfaceCourantNo.H"
-        #include "setDeltaT.H"
+        #include "demDeltaT.H"      // setDeltaT.H in whole DEM steps
 
         #include "runControlStep.H"
 
