@@ -269,11 +269,11 @@ Foam::demCoupling::demCoupling
     {
         // the restored state carries the configuration it was written with;
         // dt, gravity and the limits of constant/demProperties apply from
-        // here (the core refuses a change of contact law, skin or domain)
+        // here (contact law, skin and domain stay the state's)
         world_.check
         (
-            dem_world_configure(world_, &config_),
-            "dem_world_configure (after restoring the DEM state)"
+            dem_world_configure_run(world_, &config_),
+            "dem_world_configure_run (after restoring the DEM state)"
         );
     }
     if (mag(dem_world_time(world_) - t0) > 0.5*demDt_)
