@@ -112,6 +112,21 @@ static void config_copy(dem_config *dst, const dem_config *c)
 _Static_assert(offsetof(dem_config, impact_speed) + sizeof(double) == sizeof(dem_config),
                "config_copy: a member after impact_speed must be copied too");
 
+dem_status dem_world_configure_run(dem_world *w, const dem_config *c)
+{
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, c, "configure_run");
+    /* the fixed settings taken from the world, the changeable ones from c */
+    dem_config m = w->cfg;
+    m.dt = c->dt;
+    memcpy(m.gravity, c->gravity, sizeof m.gravity);
+    m.max_dt_fraction = c->max_dt_fraction;
+    m.max_overlap_ratio = c->max_overlap_ratio;
+    m.spatial_sort = c->spatial_sort;
+    m.impact_speed = c->impact_speed;
+    return dem_world_configure(w, &m);
+}
+
 dem_status dem_world_configure(dem_world *w, const dem_config *c)
 {
     if (!w) return DEM_ERR_ARG;

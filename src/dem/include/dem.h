@@ -113,6 +113,11 @@ typedef struct {
 void       dem_config_default(dem_config *c);
 /** Apply a configuration (checked; may be called again before particles exist). */
 dem_status dem_world_configure(dem_world *w, const dem_config *c);
+/** Apply only the settings of c that may change while particles exist
+    (dt, gravity, max_dt_fraction, max_overlap_ratio, spatial_sort,
+    impact_speed; checked as by dem_world_configure); the rest of the
+    world's configuration stays (e.g. after dem_world_restore). */
+dem_status dem_world_configure_run(dem_world *w, const dem_config *c);
 
 /*--- materials ------------------------------------------------------------*/
 /* Pairwise combination: 1/E* = (1-nu_i^2)/E_i + (1-nu_j^2)/E_j; friction,

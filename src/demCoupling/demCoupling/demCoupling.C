@@ -265,7 +265,18 @@ Foam::demCoupling::demCoupling
         world_.check(dem_world_set_time(world_, t0), "dem_world_set_time");
         decomposition_.distributeByCell();
     }
-    else if (mag(dem_world_time(world_) - t0) > 0.5*demDt_)
+    else
+    {
+        // the restored state carries the configuration it was written with;
+        // dt, gravity and the limits of constant/demProperties apply from
+        // here (contact law, skin and domain stay the state's)
+        world_.check
+        (
+            dem_world_configure_run(world_, &config_),
+            "dem_world_configure_run (after restoring the DEM state)"
+        );
+    }
+    if (mag(dem_world_time(world_) - t0) > 0.5*demDt_)
     {
         // a state written before the clocks were one (it ran ahead by its
         // settling time); a state of this version is kept as it is, so that

@@ -166,6 +166,7 @@ void Foam::demCoupling::configureWorld()
     c.damping_predicted = d.getOrDefault<bool>("dampingPredicted", false);
 
     world_.check(dem_world_configure(world_, &c), "dem_world_configure");
+    config_ = c;
 
     // materials (in the order given)
     auto readMaterial = [](const dictionary& md, const word& name)
