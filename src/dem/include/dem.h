@@ -407,6 +407,12 @@ dem_status dem_world_restore(dem_world *w, const char *path);
  *  error. */
 dem_status dem_world_save_memory(const dem_world *w, void **buf, size_t *capacity, size_t *size);
 dem_status dem_world_restore_memory(dem_world *w, const void *buf, size_t size);
+/** Added: 0 if a and b have the same contact law, damping option, periodic
+ *  box, materials, material pairs, walls (kind, material, triangles), inlets
+ *  and outlets (their number); else 1 and the first difference in what
+ *  (n bytes), a's value first ("material 0: friction 0.5, the state's 0.4").
+ *  For a continued run: the input's world against the restored state. */
+int dem_world_setup_diff(const dem_world *a, const dem_world *b, char *what, size_t n);
 
 /*--- decomposition support --------------------------------------------------------*/
 /* Ghosts take part in the force evaluation only: the half neighbour list holds

@@ -39,11 +39,23 @@ void Foam::demCoupling::write() const
 
 bool Foam::demCoupling::restoreState(const fileName& dir, const bool initial)
 {
+    // the world as set up from constant/demProperties, to compare with the
+    // restored state (a continued run keeps the state's materials and walls)
+    void* input = nullptr;
+    size_t capacity = 0, size = 0;
+    world_.check
+    (
+        dem_world_save_memory(world_, &input, &capacity, &size),
+        "dem_world_save_memory"
+    );
     bool serialState = false;
     if (!decomposition_.restore(dir, initial, serialState))
     {
+        free(input);
         return false;
     }
+    checkRestoredSetup(input, size, dir);
+    free(input);
     const fileName cpl(dir/"demCouplingState.bin");
     if (!returnReduce(isFile(cpl), andOp<bool>()))
     {
@@ -62,6 +74,43 @@ bool Foam::demCoupling::restoreState(const fileName& dir, const bool initial)
     return true;
 }
 
+
+
+void Foam::demCoupling::checkRestoredSetup
+(
+    const void* input,
+    const size_t size,
+    const fileName& dir
+) const
+{
+    dem_world* w = nullptr;
+    world_.check(dem_world_create(&w), "dem_world_create");
+    const dem_status st = dem_world_restore_memory(w, input, size);
+    char what[512];
+    const int differ =
+        st == DEM_OK ? dem_world_setup_diff(w, world_, what, sizeof what) : 0;
+    dem_world_destroy(&w);
+    world_.check(st, "dem_world_restore_memory (the input's setup)");
+    if (!differ)
+    {
+        return;
+    }
+    // material ids are the order of constant/demProperties materials
+    OStringStream names;
+    for (const word& n : materialIds_.sortedToc())
+    {
+        names << ' ' << materialIds_[n] << ' ' << n;
+    }
+    FatalErrorInFunction
+        << dict_.instance()/dict_.name()
+        << " does not match the DEM state written at "
+        << dir.path().name() << ": " << what << " (materials:"
+        << names.str().c_str() << ").  A continued run keeps the contact "
+        << "law, materials, material pairs, walls, inlets and outlets it was "
+        << "written with (only the dem timeStep, gravity and limits may "
+        << "change); restore the entries or start a new run from the initial "
+        << "time" << exit(FatalError);
+}
 
 // The coupling's own history for an exact restart: the fluid velocity of
 // the last step (du/dt of the extra forces), the periodic driving
