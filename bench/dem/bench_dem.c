@@ -4,9 +4,12 @@
   Copyright (C) 2026 the demFoam authors
   License: GPL-3.0-or-later (see LICENSE)
 
-  Usage: bench_dem BEDFILE NSTEPS [LAW]
+  Usage: bench_dem BEDFILE NSTEPS [LAW [ROLLING]]
 
   LAW: a contact-law name (dem_contact_law_name), default hertzMindlin.
+  ROLLING: rolling (default; mu_r as below, the counterpart of LIGGGHTS'
+  cdt) or norolling (mu_r = 0: the problem LAMMPS' in.lammps steps, whose
+  granular pair style has no constant-torque rolling model).
   With a core built with -DDEM_PROFILE (bench/dem/profile) it also prints
   the seconds of each step phase (dem_world_phase_times) of the timed loop.
 
@@ -87,14 +90,22 @@ static int check(dem_world *w, dem_status s, const char *what)
 
 int main(int argc, char **argv)
 {
-    if (argc != 3 && argc != 4) {
-        fprintf(stderr, "usage: bench_dem BEDFILE NSTEPS [LAW]\n");
+    if (argc < 3 || argc > 5) {
+        fprintf(stderr, "usage: bench_dem BEDFILE NSTEPS [LAW [ROLLING]]\n");
         return 2;
     }
     dem_contact_law law = DEM_CONTACT_HERTZ_MINDLIN;
-    if (argc == 4 && dem_contact_law_from_name(argv[3], &law) != DEM_OK) {
+    if (argc >= 4 && dem_contact_law_from_name(argv[3], &law) != DEM_OK) {
         fprintf(stderr, "bench_dem: LAW = %s: no such contact law\n", argv[3]);
         return 2;
+    }
+    int rolling = 1;
+    if (argc == 5) {
+        if (!strcmp(argv[4], "norolling")) rolling = 0;
+        else if (strcmp(argv[4], "rolling")) {
+            fprintf(stderr, "bench_dem: ROLLING = %s; allowed: rolling or norolling\n", argv[4]);
+            return 2;
+        }
     }
     const char *path = argv[1];
     long long nsteps = strtoll(argv[2], NULL, 10);
@@ -140,7 +151,7 @@ int main(int argc, char **argv)
     m.stiffness_n = 0.0;           /* linear law only */
     m.stiffness_t = 0.0;
     m.friction = 0.4;
-    m.rolling_friction = 0.01 * 0.5e-3; /* 0.01 R*, R* = R/2 = 0.5 mm */
+    m.rolling_friction = rolling ? 0.01 * 0.5e-3 : 0.0; /* 0.01 R*, R* = R/2 = 0.5 mm */
     m.restitution = 0.9;
     m.damping = -1.0;              /* derived from the restitution */
     int mat = -1;
@@ -219,6 +230,7 @@ int main(int argc, char **argv)
                      + sizeof(double) + 3 * sizeof(double) + 3 * sizeof(double); /* drag */
 
     printf("ours_contact_law=%s\n", dem_contact_law_name(law));
+    printf("ours_rolling_friction=%s\n", rolling ? "rolling (mu_r = 5e-6 m)" : "norolling (mu_r = 0)");
     printf("ours_n=%zu\n", np);
     printf("ours_steps=%lld\n", nsteps);
     printf("ours_first_step_seconds=%.6f\n", t1 - t0);

@@ -275,8 +275,9 @@ static DEM_ALWAYS_INLINE void dem_history_step(double n0, double n1, double n2, 
 }
 
 /* Phase 3 (gather): relative velocity at the contact (n in d0..d2), its
- * normal and tangential parts, the history and the relative spin. */
-static DEM_ALWAYS_INLINE void dem_phased_kinematics(const dem_world *w, const dem_phased_buf *B, int nc)
+ * normal and tangential parts, the history and (roll) the relative spin. */
+static DEM_ALWAYS_INLINE void dem_phased_kinematics(const dem_world *w, const dem_phased_buf *B, int nc,
+                                                    const int roll)
 {
     const double *v = w->v, *om = w->w, *nbh = w->nb_h;
     const double *restrict Bd0 = B->d0, *restrict Bd1 = B->d1, *restrict Bd2 = B->d2,
@@ -299,7 +300,7 @@ static DEM_ALWAYS_INLINE void dem_phased_kinematics(const dem_world *w, const de
         Bvn[a] = vn; Bvt0[a] = vc0 - vn * n0; Bvt1[a] = vc1 - vn * n1; Bvt2[a] = vc2 - vn * n2;
         const double *h = nbh + 3 * (size_t)Bk[a];
         Bh0[a] = h[0]; Bh1[a] = h[1]; Bh2[a] = h[2];
-        Bwr0[a] = wi[0] - wj[0]; Bwr1[a] = wi[1] - wj[1]; Bwr2[a] = wi[2] - wj[2];
+        if (roll) { Bwr0[a] = wi[0] - wj[0]; Bwr1[a] = wi[1] - wj[1]; Bwr2[a] = wi[2] - wj[2]; }
     }
 }
 
@@ -385,7 +386,7 @@ static DEM_ALWAYS_INLINE void dem_phased_loop(dem_world *w, void *L, size_t nlaw
             if (ov > movr * Bs[a]) movr = ov / Bs[a];
         }
         /* phase 3 (gather) */
-        dem_phased_kinematics(w, B, nc);
+        dem_phased_kinematics(w, B, nc, uniform != 2);
         /* phases 4- (vector, then scatter) */
         forces(w, B, L, nc, uniform, pred, rec);
         nc = 0;
@@ -396,18 +397,24 @@ static DEM_ALWAYS_INLINE void dem_phased_loop(dem_world *w, void *L, size_t nlaw
 
 /* A law's pair_forces from its phased loop LOOP(w, periodic, uniform, pred,
  * rec, movr, nct): the specialisation chosen once per force evaluation.
+ * uniform: 0 several materials (per-contact constants), 1 one material,
+ * 2 one material without rolling friction (mu_r = 0: the loop skips the
+ * relative spin and the rolling torque, which are zero).
  * Recording uses the general (per-contact constants) loop, whose arithmetic
  * is that of the uniform one with the same values, so the bits agree. */
 #define DEM_PHASED_DISPATCH(LOOP, w, per, movr, nct) do {                                                   \
-    const int u_ = (w)->nmat == 1, pred_ = (w)->cfg.damping_predicted != 0;                                 \
+    const int u_ = (w)->nmat == 1 ? ((w)->pair[0].mu_r > 0.0 ? 1 : 2) : 0;                                  \
+    const int pred_ = (w)->cfg.damping_predicted != 0;                                                      \
     if ((w)->crec_now) {                                                                                    \
         if (!pred_) { if (per) LOOP(w, 1, 0, 0, 1, movr, nct); else LOOP(w, 0, 0, 0, 1, movr, nct); }       \
         else        { if (per) LOOP(w, 1, 0, 1, 1, movr, nct); else LOOP(w, 0, 0, 1, 1, movr, nct); }       \
     } else if (!pred_) {                                                                                    \
-        if (u_) { if (per) LOOP(w, 1, 1, 0, 0, movr, nct); else LOOP(w, 0, 1, 0, 0, movr, nct); }           \
+        if (u_ == 2) { if (per) LOOP(w, 1, 2, 0, 0, movr, nct); else LOOP(w, 0, 2, 0, 0, movr, nct); }      \
+        else if (u_) { if (per) LOOP(w, 1, 1, 0, 0, movr, nct); else LOOP(w, 0, 1, 0, 0, movr, nct); }      \
         else    { if (per) LOOP(w, 1, 0, 0, 0, movr, nct); else LOOP(w, 0, 0, 0, 0, movr, nct); }           \
     } else {                                                                                                \
-        if (u_) { if (per) LOOP(w, 1, 1, 1, 0, movr, nct); else LOOP(w, 0, 1, 1, 0, movr, nct); }           \
+        if (u_ == 2) { if (per) LOOP(w, 1, 2, 1, 0, movr, nct); else LOOP(w, 0, 2, 1, 0, movr, nct); }      \
+        else if (u_) { if (per) LOOP(w, 1, 1, 1, 0, movr, nct); else LOOP(w, 0, 1, 1, 0, movr, nct); }      \
         else    { if (per) LOOP(w, 1, 0, 1, 0, movr, nct); else LOOP(w, 0, 0, 1, 0, movr, nct); }           \
     } } while (0)
 

@@ -214,6 +214,7 @@ static DEM_ALWAYS_INLINE void hm_forces(dem_world *w, const dem_phased_buf *B, v
            *restrict BF0 = L->F0, *restrict BF1 = L->F1, *restrict BF2 = L->F2,
            *restrict BTi0 = L->Ti0, *restrict BTi1 = L->Ti1, *restrict BTi2 = L->Ti2,
            *restrict BTj0 = L->Tj0, *restrict BTj1 = L->Tj1, *restrict BTj2 = L->Tj2, *restrict Bme = L->me;
+    const int roll = uniform != 2;  /* 0: mu_r = 0, no rolling torque (DEM_PHASED_DISPATCH) */
     /* phase 4 (vector): tangential law factors, rolling factor */
     DEM_IVDEP
     for (int a = 0; a < nc; ++a) {
@@ -238,6 +239,7 @@ static DEM_ALWAYS_INLINE void hm_forces(dem_world *w, const dem_phased_buf *B, v
         Bg[a] = (1.0 + sr + r) * hmsafe * inv;
         Bq4[a] = sqrt(sr);
         /* rolling: c = -min(mu_r f_cn / wm, Ii Ij / (dt (Ii + Ij))) */
+        if (!roll) continue;
         const double wm = sqrt(Bwr0[a] * Bwr0[a] + Bwr1[a] * Bwr1[a] + Bwr2[a] * Bwr2[a]);
         const double wmsafe = wm + (wm > 0.0 ? 0.0 : 1.0);
         const double Ii = BIi[a], Ij = 0.4 * Bmj[a] * Baj[a] * Baj[a], den = dtl * (Ii + Ij);
@@ -266,10 +268,15 @@ static DEM_ALWAYS_INLINE void hm_forces(dem_world *w, const dem_phased_buf *B, v
         BF0[a] = fn * n0 + ft0; BF1[a] = fn * n1 + ft1; BF2[a] = fn * n2 + ft2;
         if (rec) { Bvn[a] = fn; Bvt0[a] = ft0; Bvt1[a] = ft1; Bvt2[a] = ft2; }
         const double c0 = n1 * ft2 - n2 * ft1, c1 = n2 * ft0 - n0 * ft2, c2 = n0 * ft1 - n1 * ft0;
-        const double cr = Bcrol[a];
-        const double M0 = cr * Bwr0[a], M1 = cr * Bwr1[a], M2 = cr * Bwr2[a];
-        BTi0[a] = M0 - ai * c0; BTi1[a] = M1 - ai * c1; BTi2[a] = M2 - ai * c2;
-        BTj0[a] = aj * c0 + M0; BTj1[a] = aj * c1 + M1; BTj2[a] = aj * c2 + M2;
+        if (roll) {
+            const double cr = Bcrol[a];
+            const double M0 = cr * Bwr0[a], M1 = cr * Bwr1[a], M2 = cr * Bwr2[a];
+            BTi0[a] = M0 - ai * c0; BTi1[a] = M1 - ai * c1; BTi2[a] = M2 - ai * c2;
+            BTj0[a] = aj * c0 + M0; BTj1[a] = aj * c1 + M1; BTj2[a] = aj * c2 + M2;
+        } else {
+            BTi0[a] = -(ai * c0); BTi1[a] = -(ai * c1); BTi2[a] = -(ai * c2);
+            BTj0[a] = aj * c0; BTj1[a] = aj * c1; BTj2[a] = aj * c2;
+        }
     }
     /* phase 6 (scatter): history, forces and torques */
     for (int a = 0; a < nc; ++a) {

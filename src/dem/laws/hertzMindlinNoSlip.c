@@ -187,7 +187,9 @@ static DEM_ALWAYS_INLINE void ns_forces(dem_world *w, const dem_phased_buf *B, v
         BF0[a] = fn * n0 + ft0; BF1[a] = fn * n1 + ft1; BF2[a] = fn * n2 + ft2;
         Bfn[a] = fn;
         /* rolling (dem_rolling): c = -min(mu_r f_cn, wm Ii Ij / (dt (Ii + Ij))) / wm */
-        const double wr0 = Bwr0[a], wr1 = Bwr1[a], wr2 = Bwr2[a];
+        /* uniform == 2 (mu_r = 0): no relative spin was gathered, no torque */
+        const double wr0 = uniform != 2 ? Bwr0[a] : 0.0, wr1 = uniform != 2 ? Bwr1[a] : 0.0,
+                     wr2 = uniform != 2 ? Bwr2[a] : 0.0;
         const double wm2 = wr0 * wr0 + wr1 * wr1 + wr2 * wr2;
         const double wm = sqrt(wm2), m = (uniform ? L->u_mur : Bq[a]->mu_r) * fcn;
         const double Ii = BIi[a], Ij = 0.4 * Bmj[a] * Baj[a] * Baj[a];
