@@ -141,7 +141,7 @@ Foam::demCoupling::demCoupling
     ),
     ghosts_
     (
-        world_, box_.periodic, box_.lo, box_.hi, insertion_.inletBoxes(),
+        mesh, world_, box_.periodic, box_.lo, box_.hi, insertion_.inletBoxes(),
         insertion_.inletRadius(), diag_.time().comm
     ),
     decomposition_(mesh, world_, locator_, box_, diag_.time().comm),
