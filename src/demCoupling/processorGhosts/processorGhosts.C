@@ -116,6 +116,8 @@ Foam::processorGhosts::processorGhosts
     skin0_(0),
     stray_(0),
     ownBox_(),
+    allBoxes_(),
+    isPartner_(),
     sendIds_(),
     sendIdx_(),
     sendReorder_(-1),
@@ -247,6 +249,17 @@ void Foam::processorGhosts::setup()
         }
     }
     partners_.transfer(partners);
+    allBoxes_.setSize(nProcs);
+    isPartner_.setSize(nProcs, false);
+    forAll(all, q)
+    {
+        allBoxes_[q] = boundBox
+        (
+            point(all[q][0], all[q][1], all[q][2]),
+            point(all[q][3], all[q][4], all[q][5])
+        );
+    }
+    for (const label q : partners_) isPartner_[q] = true;
     const label np = partners_.size();
     sendIds_.setSize(np);
     sendIdx_.setSize(np);
@@ -295,6 +308,32 @@ bool Foam::processorGhosts::talk
         hdr[4 + k] = -GREAT;
     }
     scalar rMax = inletRadius_;
+    // a particle beyond its stray may touch particles of (or be a ghost
+    // for) a processor that is not a partner: those within its reach of
+    // that processor's box (whose particles stray as well)
+    auto nearOther = [&](const label i)
+    {
+        const scalar reach = a.radius[i] + rMax0_ + skin0_ + stray_;
+        forAll(allBoxes_, q)
+        {
+            if (q == Pstream::myProcNo() || isPartner_[q]) continue;
+            scalar d2 = 0;
+            for (direction k = 0; k < 3 && d2 < sqr(reach); ++k)
+            {
+                d2 += sqr
+                (
+                    axisGap
+                    (
+                        a.x[3*i + k], allBoxes_[q].min()[k],
+                        allBoxes_[q].max()[k], periodic_[k],
+                        boxHi_[k] - boxLo_[k]
+                    )
+                );
+            }
+            if (d2 < sqr(reach)) return true;
+        }
+        return false;
+    };
     if (!dead_)
     {
         for (label i = 0; i < n; ++i)
@@ -315,18 +354,19 @@ bool Foam::processorGhosts::talk
                 );
             }
             rMax = max(rMax, a.radius[i]);
-            if (g2 > sqr(stray_))
+            if (g2 > sqr(stray_) && nearOther(i))
             {
                 fail
                 (
                     DEM_ERR_STATE,
                     "particle " + std::to_string(a.id[i]) + " is "
                   + std::to_string(Foam::sqrt(g2)) + " m outside the box "
-                    "of this processor's cells within one fluid step; a "
-                    "decomposed run allows one largest particle radius ("
-                  + std::to_string(stray_) + " m), the reach of its "
-                    "DEM partners (docs/parallel.md): reduce the fluid "
-                    "time step"
+                    "of this processor's cells within one fluid step and "
+                    "within contact reach of a processor that is not one "
+                    "of its DEM partners; a decomposed run allows one "
+                    "largest particle radius (" + std::to_string(stray_)
+                  + " m) (docs/parallel.md, Neighbour-only communication): "
+                    "reduce the fluid time step"
                 );
                 break;
             }
