@@ -338,6 +338,12 @@ int dem_world_list_stale(const dem_world *w)
     return list_needs_build(w, w->drift_d2max, max_wall_speed(w));
 }
 
+double dem_world_drift_displacement(const dem_world *w)
+{
+    if (!w || !w->drift_pending) return 0.0;
+    return sqrt(w->drift_d2max);
+}
+
 dem_status dem_world_invalidate_list(dem_world *w)
 {
     if (!w) return DEM_ERR_ARG;

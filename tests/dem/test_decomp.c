@@ -667,6 +667,58 @@ static int ghost_order_diff(dem_world *w, const int64_t *ref, size_t ng)
     return d;
 }
 
+/* dem_world_drift_displacement: after each drift the largest displacement of
+   the owned particles since the last list build (positions kept by id right
+   after every build, rounded to float as the core keeps them), 0 without a
+   pending drift; consistent with list_stale */
+static void drift_displacement(void)
+{
+    check_abs("dem_world_drift_displacement(NULL) = 0", dem_world_drift_displacement(NULL), 0.0, 0.0);
+    dem_world *w = make_a(BED_WALLS);
+    dem_arrays A0;
+    TRY(w, dem_world_arrays(w, &A0));
+    int64_t idmax = 0;
+    for (size_t i = 0; i < A0.n_owned; ++i) idmax = A0.id[i] > idmax ? A0.id[i] : idmax;
+    check_range("drift_displacement: particle ids below 120 (x0 indexed by id)", (double)idmax, 0, 119);
+    if (idmax >= 120) { dem_world_destroy(&w); return; }
+    check_abs("dem_world_drift_displacement without a pending drift = 0", dem_world_drift_displacement(w), 0.0, 0.0);
+    enum { NMAX = 120 };
+    double x0[3 * NMAX]; /* kept as the core keeps them: in single precision */
+    dem_arrays A;
+    int builds = 0, moved = 0;
+    double worst = 0, skin = dem_world_skin(w);
+    int stale_bad = 0;
+    /* the first drift builds the list before it moves (none yet), later
+       ones after every stale step */
+    TRY(w, dem_world_arrays(w, &A));
+    for (size_t i = 0; i < 3 * A.n_owned; ++i) x0[3 * A.id[i / 3] + i % 3] = (float)A.x[i];
+    for (int s = 0; s < 3000; ++s) {
+        TRY(w, dem_world_step_drift(w));
+        TRY(w, dem_world_arrays(w, &A));
+        double d = 0;
+        for (size_t i = 0; i < A.n_owned; ++i) {
+            const double *a = A.x + 3 * i, *b = x0 + 3 * A.id[i];
+            d = fmax(d, sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
+        }
+        const double dc = dem_world_drift_displacement(w);
+        worst = fmax(worst, fabs(dc - d));
+        moved += d > 0.1 * skin;
+        const int stale = dem_world_list_stale(w);
+        stale_bad += (2 * dc > skin) && !stale;
+        TRY(w, dem_world_step_forces(w));
+        if (stale) {
+            ++builds;
+            TRY(w, dem_world_arrays(w, &A));
+            for (size_t i = 0; i < 3 * A.n_owned; ++i) x0[3 * A.id[i / 3] + i % 3] = (float)A.x[i];
+        }
+    }
+    check_abs("drift_displacement vs the largest displacement since the build (float positions) by id [m]", worst, 0.0, 1e-15);
+    check_range("drift_displacement: steps with a displacement above skin/10 (not vacuous)", moved, 10, 3000);
+    check_range("drift_displacement: list builds in 3000 steps (not vacuous)", builds, 1, 3000);
+    check_abs("drift_displacement: steps with 2 d > skin but list_stale 0", stale_bad, 0, 0);
+    dem_world_destroy(&w);
+}
+
 static void ghost_order_and_list_control(void)
 {
     /* skin: auto (0.2 x the largest diameter) before the first build */
@@ -848,5 +900,6 @@ int main(void)
     cfg_skin = 0;
     order_and_bookkeeping();
     ghost_order_and_list_control();
+    drift_displacement();
     return check_exit();
 }

@@ -237,8 +237,15 @@ dem_status dem_world_step_forces(dem_world *w);
  *  displacement of the owned particles since the build, d, may exceed the
  *  skin (2 d > skin, or d + moving-wall speed x time since the build > skin).
  *  Without a pending drift: 1 if the list is invalid, else 0.  0 for NULL.
- *  Decomposed runs: the OR over all ranks decides a rebuild everywhere. */
+ *  Decomposed runs: see the Verlet scheme under decomposition support. */
 int        dem_world_list_stale(const dem_world *w);
+/** Added: the largest displacement of the owned particles since the last
+ *  neighbour-list build [m], as measured by the pending drift (the d of
+ *  dem_world_list_stale; particles inserted by that drift's inlets are not
+ *  in it).  0 without a pending drift or for NULL.  Decomposed runs bound
+ *  the displacement since a partner's ghost set was chosen with it
+ *  (docs/parallel.md, "Neighbour-only communication"). */
+double     dem_world_drift_displacement(const dem_world *w);
 /** Added: the next force evaluation (step_forces, or the start of a step)
  *  rebuilds the neighbour list (e.g. another rank needs a rebuild).  The
  *  contact history is carried over exactly as by any rebuild; the stored
@@ -438,6 +445,11 @@ int dem_world_setup_diff(const dem_world *a, const dem_world *b, char *what, siz
  * dem_world_invalidate_list; else send only the states (x, v, omega) of the
  * same particles in the same order with dem_world_set_ghost_states (look them
  * up by id: owned particles are re-sorted at list builds); then step_forces.
+ * (The simplest sound scheme, with a global OR per step.  demFoam instead lets
+ * each pair of neighbouring ranks renew its ghost sets when either side's
+ * particles moved more than skin/4 since the pair's last renewal, bounded with
+ * dem_world_drift_displacement: no collective per step; src/demCoupling/
+ * processorGhosts/processorGhosts.C, docs/parallel.md.)
  * Ranks must use the same dt and skin; an owned particle may stray outside
  * its region between rebuilds (migration happens at rebuilds only).  A
  * periodic wrap of positions happens at list builds only.

@@ -141,10 +141,10 @@ Foam::demCoupling::demCoupling
     ),
     ghosts_
     (
-        world_, box_.periodic, box_.lo, box_.hi, insertion_.inletBoxes(),
+        mesh, world_, box_.periodic, box_.lo, box_.hi, insertion_.inletBoxes(),
         insertion_.inletRadius(), diag_.time().comm
     ),
-    decomposition_(mesh, world_, locator_, box_, diag_.time().comm),
+    decomposition_(mesh, world_, locator_, box_, ghosts_, diag_.time().comm),
     cloud_
     (
         mesh, world_, locator_, box_, decomposition_, state_,

@@ -279,7 +279,10 @@ bool Foam::demCoupling::subStep(stepData& sd)
     {
         const label m = min(chunk, nDem - done);
         dem_arrays a = world_.arrays();
-        for (label j = 0; j < label(a.n_owned); ++j)
+        // (decomposed: no more DEM work after a failure in this fluid step,
+        // processorGhosts::step only answers the partners)
+        const label nDrag = ghosts_.dead() ? 0 : label(a.n_owned);
+        for (label j = 0; j < nDrag; ++j)
         {
             const label s = sd.startOf(a.id[j], startById_);
             if (s < 0)
@@ -344,25 +347,34 @@ bool Foam::demCoupling::subStep(stepData& sd)
             }
             const auto t0 = std::chrono::steady_clock::now();
             const scalar tCommStep0 = diag_.time().comm;
+            // decomposed: this processor's status; a failure is agreed
+            // once per fluid step, below
             const dem_status st =
-                Pstream::parRun() ? ghosts_.step(m, failure_) : world_.tryStep(m);
+                Pstream::parRun() ? ghosts_.step(m) : world_.tryStep(m);
             diag_.time().dem += std::chrono::duration<scalar>
             (
                 std::chrono::steady_clock::now() - t0
             ).count()
               - (diag_.time().comm - tCommStep0);
-            if (st != DEM_OK)
+            if (st != DEM_OK && !Pstream::parRun())
             {
-                // (decomposed: set by processorGhosts::step, naming the processor)
-                if (failure_.empty())
-                {
-                    failure_ = std::string("DEM core: ")
-                      + dem_status_string(st) + ": " + world_.lastError();
-                }
+                failure_ = std::string("DEM core: ")
+                  + dem_status_string(st) + ": " + world_.lastError();
                 return false;
             }
         }
         done += m;
+    }
+    if (Pstream::parRun() && !frozen_)
+    {
+        // the first failure on any processor (earliest DEM step, then
+        // lowest processor) stops all of them, each with its message; the
+        // sub-steps of the fluid step are undone from the checkpoint
+        const dem_status st = ghosts_.agree(failure_);
+        if (st != DEM_OK)
+        {
+            return false;
+        }
     }
     return true;
 }

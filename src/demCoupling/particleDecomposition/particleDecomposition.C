@@ -20,18 +20,12 @@ Description
     history to the processor whose cells hold them; particles no processor
     holds left the domain (outlet or lost, booked by the processor they left).
 
-    Which particles are sent where: when a new ghost set is chosen, each
-    processor's box of its owned particle centres (the master's also covers
-    the inlets, where it inserts), the largest particle radius and the skin
-    are gathered; particle i goes to processor r if its distance to r's box
-    (periodic images included) is below r_i + r_max + skin.  A contact
-    partner j of i on r lies in r's box and |x_i - x_j| < r_i + r_j; until
-    the next neighbour-list build each particle moves less than skin/2, so
-    no contact is missed.  A new set is chosen at the start of each fluid
-    step and whenever any processor's Verlet criterion asks for a list
-    rebuild (an insertion does); in between only x, v and omega of the same
-    ghosts are sent (processorGhosts.H).  This file: the restart state of a
-    decomposed run, the first distribution and the migration.
+    Which particles are sent where, and to whom: processorGhosts (each
+    processor talks only to its DEM partners, the processors within contact
+    reach of its box; a pair chooses its ghost sets again when either
+    side's particles moved too far or its particles changed).  The
+    migration, too, goes to the DEM partners only.  This file: the restart
+    state of a decomposed run, the first distribution and the migration.
 
     Walls: every processor adds the wall triangles of all processors (a
     particle near a processor boundary may touch a wall face of the
@@ -42,9 +36,11 @@ Description
 
 #include "particleDecomposition.H"
 #include "processorPolyPatch.H"
-#include "PstreamBuffers.H"
+#include "UIPstream.H"
+#include "UOPstream.H"
 #include "OSspecific.H"
 #include <chrono>
+#include <cstring>
 #include <vector>
 
 using namespace Foam::demTools;
@@ -57,6 +53,7 @@ Foam::particleDecomposition::particleDecomposition
     demWorld& world,
     const particleLocator& locator,
     const demTools::periodicBox& box,
+    processorGhosts& ghosts,
     scalar& commTime
 )
 :
@@ -64,6 +61,7 @@ Foam::particleDecomposition::particleDecomposition
     world_(world),
     locator_(locator),
     box_(box),
+    ghosts_(ghosts),
     tComm_(commTime)
 {}
 
@@ -272,8 +270,6 @@ void Foam::particleDecomposition::migrate
 )
 {
     const auto t0 = std::chrono::steady_clock::now();
-    const label nProcs = Pstream::nProcs();
-    const label me = Pstream::myProcNo();
     taken.setSize(leaving.size());
     taken = false;
     exitPatch.setSize(leaving.size());
@@ -312,93 +308,160 @@ void Foam::particleDecomposition::migrate
             through[k] = mesh_.faceCentres()[exitFace[k]];
         }
     }
-    labelList counts(nProcs, 0);
-    counts[me] = leaving.size();
-    Pstream::gatherList(counts);
-    Pstream::scatterList(counts);
-    labelList offset(nProcs + 1, 0);
-    forAll(counts, r) offset[r + 1] = offset[r] + counts[r];
-    if (offset[nProcs] > 0)
+    // to every DEM partner only: a particle that left this processor's
+    // cells lies within one largest radius of its box (processorGhosts
+    // stops the run otherwise), so the cells that hold it are a partner's.
+    // Three rounds of one message per partner: the offer; each partner's
+    // answer (holds it, the patch beyond a processor face); the particles
+    // each partner takes (the lowest processor that holds one)
+    const labelList& partners = ghosts_.partners();
+    const label np = partners.size();
+    const label nOut = leaving.size();
+    const int tagOffer = 7311, tagAnswer = 7312, tagTake = 7313;
+    auto receive = [&](const label r, const int tag, DynamicList<char>& buf)
     {
-        // to every processor: the position tells who holds it
-        PstreamBuffers pBufs(Pstream::commsTypes::nonBlocking);
-        if (leaving.size())
-        {
-            for (label r = 0; r < nProcs; ++r)
-            {
-                if (r == me) continue;
-                UOPstream os(r, pBufs);
-                os << sizes << where << through;
-                os.write(out.data(), std::streamsize(out.size()));
-            }
-        }
-        pBufs.finishedSends();
+        buf.clearStorage();
+        label pos = 0;
+        UIPstream is(Pstream::commsTypes::scheduled, r, buf, pos, tag);
+    };
+    auto send = [&](const label r, const int tag, const std::vector<char>& b)
+    {
+        UOPstream::write
+        (
+            Pstream::commsTypes::nonBlocking, r, b.data(),
+            std::streamsize(b.size()), tag
+        );
+    };
+    auto put = [](std::vector<char>& b, const void* p, const size_t sz)
+    {
+        const char* c = static_cast<const char*>(p);
+        b.insert(b.end(), c, c + sz);
+    };
+    const label req0 = UPstream::nRequests();
 
-        labelList owner(offset[nProcs], nProcs);
-        labelList outPatch(offset[nProcs], -1);
-        List<std::vector<char>> in(nProcs);
-        List<labelList> inSizes(nProcs);
-        List<labelList> inCell(nProcs);
-        for (label r = 0; r < nProcs; ++r)
-        {
-            if (r == me || !counts[r]) continue;
-            UIPstream is(r, pBufs);
-            List<point> inWhere, inThrough;
-            is >> inSizes[r] >> inWhere >> inThrough;
-            in[r].resize(sum(inSizes[r]));
-            is.read(in[r].data(), std::streamsize(in[r].size()));
-            inCell[r].setSize(counts[r], -1);
-            forAll(inWhere, k)
-            {
-                label exitFace = -1;
-                inCell[r][k] = locator_.locate(inWhere[k], -1, exitFace);
-                if (inCell[r][k] >= 0)
-                {
-                    owner[offset[r] + k] = me;
-                }
-                else if (inThrough[k] != point::max)
-                {
-                    outPatch[offset[r] + k] =
-                        patchBeyond(r, inThrough[k], inWhere[k]);
-                }
-            }
-        }
-        Pstream::listCombineGather(owner, minEqOp<label>());
-        Pstream::listCombineScatter(owner);
-        Pstream::listCombineGather(outPatch, maxEqOp<label>());
-        Pstream::listCombineScatter(outPatch);
-
+    // the offer: count, sizes, where and through (6 doubles), the packed
+    // particles
+    std::vector<char> offer;
+    {
+        const int64_t cnt = nOut;
+        put(offer, &cnt, sizeof cnt);
         forAll(leaving, k)
         {
-            taken[k] = owner[offset[me] + k] < nProcs;
-            exitPatch[k] = outPatch[offset[me] + k];
+            const int64_t sz = sizes[k];
+            put(offer, &sz, sizeof sz);
         }
-
-        // take the particles whose centre is in this processor's cells
-        // (appended: the indices in leaving stay valid)
-        for (label r = 0; r < nProcs; ++r)
+        forAll(leaving, k)
         {
-            if (r == me || !counts[r]) continue;
-            label off = 0;
-            forAll(inSizes[r], k)
+            const double wt[6] =
             {
-                if (owner[offset[r] + k] == me)
-                {
-                    world_.check
-                    (
-                        dem_world_unpack_particle
-                        (
-                            world_, in[r].data() + off, size_t(inSizes[r][k]), 0
-                        ),
-                        "dem_world_unpack_particle"
-                    );
-                    const dem_arrays b = world_.arrays();
-                    idSlot(hostById, b.id[b.n_owned - 1]) = inCell[r][k];
-                }
-                off += inSizes[r][k];
+                where[k].x(), where[k].y(), where[k].z(),
+                through[k].x(), through[k].y(), through[k].z()
+            };
+            put(offer, wt, sizeof wt);
+        }
+        put(offer, out.data(), out.size());
+    }
+    for (const label r : partners) send(r, tagOffer, offer);
+
+    // the partners' offers: which particles this processor's cells hold
+    List<std::vector<char>> in(np);
+    List<std::vector<int64_t>> inSizes(np);
+    List<labelList> inCell(np);
+    List<std::vector<char>> answer(np);
+    DynamicList<char> buf;
+    for (label k = 0; k < np; ++k)
+    {
+        const label r = partners[k];
+        receive(r, tagOffer, buf);
+        const char* c = buf.cdata();
+        int64_t cnt = 0;
+        std::memcpy(&cnt, c, sizeof cnt);
+        c += sizeof cnt;
+        inSizes[k].resize(size_t(cnt));
+        std::memcpy(inSizes[k].data(), c, size_t(cnt)*sizeof(int64_t));
+        c += size_t(cnt)*sizeof(int64_t);
+        std::vector<double> wt(6*size_t(cnt));
+        std::memcpy(wt.data(), c, wt.size()*sizeof(double));
+        c += wt.size()*sizeof(double);
+        in[k].assign(c, buf.cdata() + buf.size());
+        inCell[k].setSize(label(cnt), -1);
+        for (int64_t j = 0; j < cnt; ++j)
+        {
+            const point inWhere(wt[6*j], wt[6*j + 1], wt[6*j + 2]);
+            const point inThrough(wt[6*j + 3], wt[6*j + 4], wt[6*j + 5]);
+            label exitFace = -1;
+            inCell[k][j] = locator_.locate(inWhere, -1, exitFace);
+            int64_t ans[2] = {inCell[k][j] >= 0, -1};
+            if (ans[0] == 0 && inThrough != point::max)
+            {
+                ans[1] = patchBeyond(r, inThrough, inWhere);
             }
+            put(answer[k], ans, sizeof ans);
+        }
+        send(r, tagAnswer, answer[k]);
+    }
+
+    // the answers: the lowest partner that holds a particle takes it; the
+    // patch beyond a processor face from the partner behind it
+    labelList owner(nOut, -1);
+    for (label k = 0; k < np; ++k)
+    {
+        const label r = partners[k];
+        receive(r, tagAnswer, buf);
+        if (size_t(buf.size()) != 2*sizeof(int64_t)*size_t(nOut))
+        {
+            FatalErrorInFunction
+                << "processor " << r << " answered the migration of "
+                << nOut << " particles with " << label(buf.size())
+                << " bytes; please report this" << exit(FatalError);
+        }
+        const int64_t* ans = reinterpret_cast<const int64_t*>(buf.cdata());
+        for (label j = 0; j < nOut; ++j)
+        {
+            if (ans[2*j] && (owner[j] < 0 || r < owner[j])) owner[j] = r;
+            exitPatch[j] = max(exitPatch[j], label(ans[2*j + 1]));
         }
     }
+    List<std::vector<char>> take(np);
+    forAll(leaving, j)
+    {
+        taken[j] = owner[j] >= 0;
+        if (taken[j])
+        {
+            const int64_t idx = j;
+            put(take[partners.find(owner[j])], &idx, sizeof idx);
+        }
+    }
+    for (label k = 0; k < np; ++k) send(partners[k], tagTake, take[k]);
+
+    // take the particles this processor was given (appended: the indices
+    // in leaving stay valid)
+    for (label k = 0; k < np; ++k)
+    {
+        receive(partners[k], tagTake, buf);
+        const label nTake = label(size_t(buf.size())/sizeof(int64_t));
+        const int64_t* idx = reinterpret_cast<const int64_t*>(buf.cdata());
+        std::vector<size_t> off(inSizes[k].size() + 1, 0);
+        for (size_t j = 0; j < inSizes[k].size(); ++j)
+        {
+            off[j + 1] = off[j] + size_t(inSizes[k][j]);
+        }
+        for (label t = 0; t < nTake; ++t)
+        {
+            const size_t j = size_t(idx[t]);
+            world_.check
+            (
+                dem_world_unpack_particle
+                (
+                    world_, in[k].data() + off[j], size_t(inSizes[k][j]), 0
+                ),
+                "dem_world_unpack_particle"
+            );
+            const dem_arrays b = world_.arrays();
+            idSlot(hostById, b.id[b.n_owned - 1]) = inCell[k][label(j)];
+        }
+    }
+    UPstream::waitRequests(req0);
     tComm_ += std::chrono::duration<scalar>
     (
         std::chrono::steady_clock::now() - t0

@@ -4,18 +4,39 @@
   License: GPL-3.0-or-later (see LICENSE)
 
 Description
-    Ghost copies of particles across processor boundaries (docs/parallel.md):
-    which owned particles go to which processor, their packing, and the
-    DEM steps of a decomposed run with the ghosts refreshed between the
-    drift and the force evaluation.
+    Ghost copies of particles across processor boundaries (docs/parallel.md,
+    "Neighbour-only communication"): the partners, which owned particles go
+    to which partner, their packing, and the DEM steps of a decomposed run
+    with the ghosts refreshed between the drift and the force evaluation.
+
+    Why a quarter skin per pair and no propagation: the ghost set that q
+    sends p at time T holds every q particle within r_i + r_max + skin of
+    the box of p's centres at T.  While q's and p's particles each move
+    less than skin/4 from T (each side checks its own and asks for a
+    renewal otherwise), no contact of a q particle that is not a ghost
+    on p can start (skin/2 < skin).  p's neighbour list, built at any time
+    B >= T (when another pair of p renews, or its own list goes stale),
+    holds the pairs within r_i + r_j + skin at B: p's own particles move
+    less than skin/2 from B (the core's criterion), q's less than
+    skin/4 + skin/4 from B (both are within skin/4 of where they were at
+    T), so no pair is missed before the next build.  Hence one pair's
+    renewal forces no other pair's, and a rebuild does not propagate.
+    Displacements since T are bounded without keeping positions: S_ sums
+    the largest owned displacement of every finished list-build interval
+    (the core's drift displacement at the rebuild, plus the rounding of its
+    single-precision build positions), so S_ - S_(T) + the current drift
+    displacement bounds every owned particle's displacement since T (the
+    triangle inequality, interval by interval).
 
 \*---------------------------------------------------------------------------*/
 
 #include "processorGhosts.H"
 #include "demCouplingTools.H"
-#include "PstreamBuffers.H"
+#include "UIPstream.H"
+#include "UOPstream.H"
 #include "Map.H"
 #include <chrono>
+#include <cstring>
 #include <vector>
 
 using namespace Foam::demTools;
@@ -71,6 +92,7 @@ namespace
 
 Foam::processorGhosts::processorGhosts
 (
+    const polyMesh& mesh,
     demWorld& world,
     const FixedList<bool, 3>& periodic,
     const vector& boxLo,
@@ -80,6 +102,7 @@ Foam::processorGhosts::processorGhosts
     scalar& commTime
 )
 :
+    mesh_(mesh),
     world_(world),
     periodic_(periodic),
     boxLo_(boxLo),
@@ -87,103 +110,213 @@ Foam::processorGhosts::processorGhosts
     inletBoxes_(inletBoxes),
     inletRadius_(inletRadius),
     tComm_(commTime),
-    ghostSize_(0),
+    setUp_(false),
+    partners_(),
+    rMax0_(0),
+    skin0_(0),
+    stray_(0),
+    ownBox_(),
+    allBoxes_(),
+    isPartner_(),
     sendIds_(),
     sendIdx_(),
     sendReorder_(-1),
+    recvSet_(),
+    recvCount_(),
     recvFirst_(),
-    recvCount_()
+    partnerSkin_(),
+    sRef_(),
+    S_(0),
+    dead_(false),
+    ownStatus_(DEM_OK),
+    failStep_(0),
+    failMessage_(),
+    stepCount_(0)
 {}
 
 
-// * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
+// * * * * * * * * * * * * * * Private functions * * * * * * * * * * * * * //
 
-void Foam::processorGhosts::exchange()
+namespace
 {
-    const auto t0 = std::chrono::steady_clock::now();
-    world_.check(dem_world_clear_ghosts(world_), "dem_world_clear_ghosts");
+    // message tags of the per-step header and of a renewed ghost set
+    const int tagHeader = 7301;
+    const int tagSet = 7302;
 
+    // header: flags, box of owned centres (lo, hi), largest radius, skin
+    const int headerSize = 9;
+    const int askRenew = 1, isDead = 2, hasStates = 4;
+}
+
+
+void Foam::processorGhosts::setup()
+{
     const label nProcs = Pstream::nProcs();
     const label me = Pstream::myProcNo();
-    dem_arrays a = world_.arrays();
+    const dem_arrays a = world_.arrays();
     const label n = label(a.n_owned);
 
-    // box of the owned centres (+ the inlets on the master), largest
-    // radius, skin
-    typedef FixedList<scalar, 8> boxInfo;
-    boxInfo mine;
-    for (direction k = 0; k < 3; ++k)
-    {
-        mine[k] = GREAT;
-        mine[3 + k] = -GREAT;
-    }
-    mine[6] = inletRadius_;
-    mine[7] = dem_world_skin(world_);
-    auto grow = [&](const point& x)
-    {
-        for (direction k = 0; k < 3; ++k)
-        {
-            mine[k] = min(mine[k], x[k]);
-            mine[3 + k] = max(mine[3 + k], x[k]);
-        }
-    };
+    // this processor's box: its mesh, its particles now (a particle in no
+    // processor's cells stays on the master at the first distribution) and
+    // the inlets
+    ownBox_ = boundBox(mesh_.points(), false);
+    scalar r = inletRadius_;
     for (label i = 0; i < n; ++i)
     {
-        grow(toVec(a.x, i));
-        mine[6] = max(mine[6], a.radius[i]);
+        ownBox_.add(toVec(a.x, i));
+        r = max(r, a.radius[i]);
     }
     for (const boundBox& bb : inletBoxes_)
     {
-        grow(bb.min());
-        grow(bb.max());
+        ownBox_.add(bb);
     }
-    List<boxInfo> boxes(nProcs);
-    boxes[me] = mine;
-    Pstream::gatherList(boxes);
-    Pstream::scatterList(boxes);
-    scalar rMax = 0, skinMin = GREAT, skin = 0;
-    for (const boxInfo& b : boxes)
+    const bool hasParticles = n > 0 || inletBoxes_.size();
+
+    typedef FixedList<scalar, 9> boxInfo;
+    List<boxInfo> all(nProcs);
+    boxInfo& mine = all[me];
+    for (direction k = 0; k < 3; ++k)
     {
-        rMax = max(rMax, b[6]);
-        if (b[0] <= b[3])
+        mine[k] = ownBox_.min()[k];
+        mine[3 + k] = ownBox_.max()[k];
+    }
+    mine[6] = r;
+    mine[7] = dem_world_skin(world_);
+    mine[8] = hasParticles;
+    Pstream::gatherList(all);
+    Pstream::scatterList(all);
+
+    rMax0_ = 0;
+    scalar skinMin = GREAT, skinMax = 0;
+    for (const boxInfo& b : all)
+    {
+        rMax0_ = max(rMax0_, b[6]);
+        if (b[8] > 0 && b[7] > 0)
         {
             skinMin = min(skinMin, b[7]);
-            skin = max(skin, b[7]);
+            skinMax = max(skinMax, b[7]);
         }
     }
-    if (skin > skinMin*(1 + 1e-12))
+    if (skinMax > skinMin*(1 + 1e-12))
     {
         FatalErrorInFunction
             << "the DEM skin differs between processors (" << skinMin
-            << " to " << skin << " m): the automatic skin follows the "
+            << " to " << skinMax << " m): the automatic skin follows the "
             << "largest particle of each processor; set dem/skin in "
             << "constant/demProperties (e.g. 0.2 of the largest diameter)"
             << exit(FatalError);
     }
+    // the automatic skin of the largest particle if none is known yet
+    // (no particles before the first insertion)
+    skin0_ = max(skinMax, 0.4*rMax0_);
 
-    // pack the owned particles each processor needs (all packed ghosts
-    // have one size: no contact history)
-    if (!ghostSize_ && n)
+    // a particle may stray one largest radius outside its processor's box
+    // within a fluid step (it moves a small fraction of its diameter); a
+    // particle of p touches one of q only if the boxes are within
+    // 2 r_max + skin + 2 stray
+    stray_ = rMax0_;
+    const scalar reach = 2*rMax0_ + skin0_ + 2*stray_;
+    DynamicList<label> partners;
+    for (label q = 0; q < nProcs; ++q)
     {
-        world_.check
+        if (q == me) continue;
+        scalar d2 = 0;
+        for (direction k = 0; k < 3; ++k)
+        {
+            const scalar L = boxHi_[k] - boxLo_[k];
+            auto gap = [&](const scalar shift)
+            {
+                return max
+                (
+                    scalar(0),
+                    max
+                    (
+                        all[q][k] + shift - mine[3 + k],
+                        mine[k] - all[q][3 + k] - shift
+                    )
+                );
+            };
+            scalar g = gap(0);
+            if (periodic_[k])
+            {
+                g = min(g, min(gap(L), gap(-L)));
+            }
+            d2 += sqr(g);
+        }
+        if (d2 < sqr(reach))
+        {
+            partners.append(q);
+        }
+    }
+    partners_.transfer(partners);
+    allBoxes_.setSize(nProcs);
+    isPartner_.setSize(nProcs, false);
+    forAll(all, q)
+    {
+        allBoxes_[q] = boundBox
         (
-            dem_world_pack_ghost(world_, 0, nullptr, &ghostSize_),
-            "dem_world_pack_ghost"
+            point(all[q][0], all[q][1], all[q][2]),
+            point(all[q][3], all[q][4], all[q][5])
         );
     }
-    // within reach until the next list build: particles move less than
-    // skin/2 each before it
-    const size_t gs = ghostSize_;
-    List<std::vector<char>> send(nProcs);
-    sendIds_.setSize(nProcs);
-    for (DynamicList<int64_t>& ids : sendIds_) ids.clear();
-    for (label i = 0; i < n; ++i)
+    for (const label q : partners_) isPartner_[q] = true;
+    const label np = partners_.size();
+    sendIds_.setSize(np);
+    sendIdx_.setSize(np);
+    recvSet_.setSize(np);
+    recvCount_.setSize(np, 0);
+    recvFirst_.setSize(np, 0);
+    partnerSkin_.setSize(np, 0);
+    sRef_.setSize(np, 0);
+    Pout<< "demCoupling: DEM partners of processor " << me
+        << " (contact reach " << reach << " m): "
+        << flatOutput(partners_) << endl;
+    setUp_ = true;
+}
+
+
+void Foam::processorGhosts::fail(const dem_status st, const std::string& why)
+{
+    if (dead_) return;
+    dead_ = true;
+    ownStatus_ = st;
+    failStep_ = stepCount_;
+    failMessage_ = why;
+}
+
+
+bool Foam::processorGhosts::talk
+(
+    const bool start,
+    const bool stale,
+    const scalar d
+)
+{
+    const auto t0 = std::chrono::steady_clock::now();
+    const label np = partners_.size();
+    dem_arrays a = world_.arrays();
+    const label n = label(a.n_owned);
+    const scalar skin = dem_world_skin(world_);
+
+    // header: the box of the owned centres (the master's with the inlets),
+    // the largest radius; each particle within its stray of this
+    // processor's box (else a partner might be missing)
+    FixedList<double, headerSize> hdr;
+    for (direction k = 0; k < 3; ++k)
     {
-        const scalar reach = a.radius[i] + rMax + skin;
-        for (label r = 0; r < nProcs; ++r)
+        hdr[1 + k] = GREAT;
+        hdr[4 + k] = -GREAT;
+    }
+    scalar rMax = inletRadius_;
+    // a particle beyond its stray may touch particles of (or be a ghost
+    // for) a processor that is not a partner: those within its reach of
+    // that processor's box (whose particles stray as well)
+    auto nearOther = [&](const label i)
+    {
+        const scalar reach = a.radius[i] + rMax0_ + skin0_ + stray_;
+        forAll(allBoxes_, q)
         {
-            const boxInfo& b = boxes[r];
-            if (r == me || b[0] > b[3]) continue;
+            if (q == Pstream::myProcNo() || isPartner_[q]) continue;
             scalar d2 = 0;
             for (direction k = 0; k < 3 && d2 < sqr(reach); ++k)
             {
@@ -191,199 +324,461 @@ void Foam::processorGhosts::exchange()
                 (
                     axisGap
                     (
-                        a.x[3*i + k], b[k], b[3 + k], periodic_[k],
+                        a.x[3*i + k], allBoxes_[q].min()[k],
+                        allBoxes_[q].max()[k], periodic_[k],
                         boxHi_[k] - boxLo_[k]
                     )
                 );
             }
-            if (d2 >= sqr(reach)) continue;
-            sendIds_[r].append(a.id[i]);
-            std::vector<char>& buf = send[r];
-            buf.resize(buf.size() + gs);
-            size_t sz = gs;
-            world_.check
-            (
-                dem_world_pack_ghost(world_, size_t(i), buf.data() + buf.size() - gs, &sz),
-                "dem_world_pack_ghost"
-            );
+            if (d2 < sqr(reach)) return true;
         }
-    }
-
-    PstreamBuffers pBufs(Pstream::commsTypes::nonBlocking);
-    forAll(send, r)
+        return false;
+    };
+    if (!dead_)
     {
-        if (r == me || send[r].empty()) continue;
-        UOPstream os(r, pBufs);
-        os << label(gs) << label(send[r].size()/gs);
-        os.write(send[r].data(), std::streamsize(send[r].size()));
-    }
-    labelList recvSizes;
-    pBufs.finishedSends(recvSizes);
-    std::vector<char> buf;
-    recvFirst_.setSize(nProcs);
-    recvCount_.setSize(nProcs);
-    recvCount_ = 0;
-    label nGhosts = 0;
-    forAll(recvSizes, r)
-    {
-        recvFirst_[r] = nGhosts;
-        if (r == me || !recvSizes[r]) continue;
-        UIPstream is(r, pBufs);
-        label rgs = 0, nGhost = 0;
-        is >> rgs >> nGhost;
-        recvCount_[r] = nGhost;
-        nGhosts += nGhost;
-        buf.resize(size_t(rgs)*nGhost);
-        is.read(buf.data(), std::streamsize(buf.size()));
-        for (size_t off = 0; off + rgs <= buf.size(); off += rgs)
+        for (label i = 0; i < n; ++i)
         {
-            world_.check
-            (
-                dem_world_unpack_particle(world_, buf.data() + off, rgs, 1),
-                "dem_world_unpack_particle (ghost)"
-            );
+            scalar g2 = 0;
+            for (direction k = 0; k < 3; ++k)
+            {
+                const scalar x = a.x[3*i + k];
+                hdr[1 + k] = min(hdr[1 + k], x);
+                hdr[4 + k] = max(hdr[4 + k], x);
+                g2 += sqr
+                (
+                    axisGap
+                    (
+                        x, ownBox_.min()[k], ownBox_.max()[k], periodic_[k],
+                        boxHi_[k] - boxLo_[k]
+                    )
+                );
+            }
+            rMax = max(rMax, a.radius[i]);
+            if (g2 > sqr(stray_) && nearOther(i))
+            {
+                fail
+                (
+                    DEM_ERR_STATE,
+                    "particle " + std::to_string(a.id[i]) + " is "
+                  + std::to_string(Foam::sqrt(g2)) + " m outside the box "
+                    "of this processor's cells within one fluid step and "
+                    "within contact reach of a processor that is not one "
+                    "of its DEM partners; a decomposed run allows one "
+                    "largest particle radius (" + std::to_string(stray_)
+                  + " m) (docs/parallel.md, Neighbour-only communication): "
+                    "reduce the fluid time step"
+                );
+                break;
+            }
+        }
+        if (!dead_ && rMax > rMax0_*(1 + 1e-12))
+        {
+            FatalErrorInFunction
+                << "a particle of radius " << rMax << " m is larger than the "
+                << "largest at the start of the run (" << rMax0_ << " m), "
+                << "which set the reach of the DEM partners; please report "
+                << "this" << exit(FatalError);
+        }
+        if (!dead_ && skin > skin0_*(1 + 1e-12))
+        {
+            FatalErrorInFunction
+                << "the DEM skin grew to " << skin << " m, beyond the "
+                << skin0_ << " m of the start, which set the reach of the "
+                << "DEM partners: set dem/skin in constant/demProperties "
+                << "(e.g. 0.2 of the largest diameter)" << exit(FatalError);
         }
     }
-    sendReorder_ = -1;
-    tComm_ += std::chrono::duration<scalar>
-    (
-        std::chrono::steady_clock::now() - t0
-    ).count();
-}
-
-
-void Foam::processorGhosts::forward()
-{
-    const auto t0 = std::chrono::steady_clock::now();
-    const label nProcs = Pstream::nProcs();
-    const dem_arrays a = world_.arrays();
-
-    // storage indices of the ids sent (the core re-sorts at list builds)
-    const int64_t reorders = dem_world_reorder_count(world_);
-    if (reorders != sendReorder_)
+    for (const boundBox& bb : inletBoxes_)
     {
-        Map<label> index(2*a.n_owned + 1);
-        for (label i = 0; i < label(a.n_owned); ++i)
+        for (direction k = 0; k < 3; ++k)
+        {
+            hdr[1 + k] = min(hdr[1 + k], bb.min()[k]);
+            hdr[4 + k] = max(hdr[4 + k], bb.max()[k]);
+        }
+    }
+    hdr[7] = rMax;
+    hdr[8] = skin;
+
+    // the storage indices of the ids sent (the core re-sorts at builds)
+    const int64_t reorders = dem_world_reorder_count(world_);
+    auto mapIndices = [&]()
+    {
+        if (reorders == sendReorder_) return;
+        Map<label> index(2*n + 1);
+        for (label i = 0; i < n; ++i)
         {
             index.insert(label(a.id[i]), i);
         }
-        sendIdx_.setSize(nProcs);
-        forAll(sendIds_, r)
+        forAll(sendIds_, k)
         {
-            sendIdx_[r].setSize(sendIds_[r].size());
-            forAll(sendIds_[r], k)
+            sendIdx_[k].setSize(sendIds_[k].size());
+            forAll(sendIds_[k], j)
             {
-                const auto it = index.cfind(label(sendIds_[r][k]));
+                const auto it = index.cfind(label(sendIds_[k][j]));
                 if (!it.found())
                 {
                     FatalErrorInFunction
-                        << "ghost particle " << label(sendIds_[r][k])
-                        << " for processor " << r << " is no longer owned "
-                        << "here between list builds; please report this"
-                        << exit(FatalError);
+                        << "ghost particle " << label(sendIds_[k][j])
+                        << " for processor " << partners_[k] << " is no "
+                        << "longer owned here between renewals; please "
+                        << "report this" << exit(FatalError);
                 }
-                sendIdx_[r][k] = *it;
+                sendIdx_[k][j] = *it;
             }
         }
         sendReorder_ = reorders;
-    }
+    };
 
-    PstreamBuffers pBufs(Pstream::commsTypes::nonBlocking);
-    std::vector<double> out;
-    forAll(sendIdx_, r)
+    // phase 1: a header to every partner, with the ghost states unless
+    // the pair renews (or this processor stopped)
+    const label req0 = UPstream::nRequests();
+    List<std::vector<double>> out(np);
+    std::vector<char> ask(np, 0);
+    for (label k = 0; k < np; ++k)
     {
-        if (sendIdx_[r].empty()) continue;
-        out.resize(9*sendIdx_[r].size());
-        forAll(sendIdx_[r], k)
+        scalar thr = skin;
+        if (partnerSkin_[k] > 0 && (thr <= 0 || partnerSkin_[k] < thr))
         {
-            const label i = sendIdx_[r][k];
-            for (direction j = 0; j < 3; ++j)
+            thr = partnerSkin_[k];
+        }
+        ask[k] = start || stale || S_ - sRef_[k] + d > 0.25*thr;
+        int flags = (ask[k] ? askRenew : 0) | (dead_ ? isDead : 0);
+        const bool states = !ask[k] && !dead_;
+        if (states) flags |= hasStates;
+        std::vector<double>& o = out[k];
+        o.assign(hdr.begin(), hdr.end());
+        o[0] = flags;
+        if (states)
+        {
+            mapIndices();
+            const labelList& idx = sendIdx_[k];
+            o.resize(headerSize + 9*idx.size());
+            double* v = o.data() + headerSize;
+            forAll(idx, j)
             {
-                out[9*k + j] = a.x[3*i + j];
-                out[9*k + 3 + j] = a.v[3*i + j];
-                out[9*k + 6 + j] = a.omega[3*i + j];
+                const label i = idx[j];
+                for (direction c = 0; c < 3; ++c)
+                {
+                    v[9*j + c] = a.x[3*i + c];
+                    v[9*j + 3 + c] = a.v[3*i + c];
+                    v[9*j + 6 + c] = a.omega[3*i + c];
+                }
             }
         }
-        UOPstream os(r, pBufs);
-        os.write(reinterpret_cast<const char*>(out.data()), std::streamsize(out.size()*sizeof(double)));
+        UOPstream::write
+        (
+            Pstream::commsTypes::nonBlocking, partners_[k],
+            reinterpret_cast<const char*>(o.data()),
+            std::streamsize(o.size()*sizeof(double)), tagHeader
+        );
     }
-    pBufs.finishedSends();
-    std::vector<double> in;
-    forAll(recvCount_, r)
+
+    // their headers (sizes by probe)
+    std::vector<char> renew(np, 0), fresh(np, 0);
+    List<FixedList<double, headerSize>> theirs(np);
+    List<std::vector<double>> states(np);
+    bool partnerDead = false;
+    DynamicList<char> buf;
+    for (label k = 0; k < np; ++k)
     {
-        if (!recvCount_[r]) continue;
-        UIPstream is(r, pBufs);
-        in.resize(9*recvCount_[r]);
-        is.read(reinterpret_cast<char*>(in.data()), std::streamsize(in.size()*sizeof(double)));
+        buf.clearStorage();
+        label pos = 0;
+        UIPstream is
+        (
+            Pstream::commsTypes::scheduled, partners_[k], buf, pos, tagHeader
+        );
+        const size_t nd = size_t(buf.size())/sizeof(double);
+        const double* in = reinterpret_cast<const double*>(buf.cdata());
+        if (nd < size_t(headerSize))
+        {
+            FatalErrorInFunction
+                << "a DEM ghost header from processor " << partners_[k]
+                << " holds " << label(nd) << " values, expected at least "
+                << headerSize << "; please report this" << exit(FatalError);
+        }
+        for (int j = 0; j < headerSize; ++j) theirs[k][j] = in[j];
+        const int flags = int(in[0]);
+        const scalar theirSkin = in[8];
+        if
+        (
+            skin > 0 && theirSkin > 0
+         && mag(theirSkin - skin) > 1e-12*max(skin, theirSkin)
+        )
+        {
+            FatalErrorInFunction
+                << "the DEM skin differs between processors ("
+                << min(skin, theirSkin) << " to " << max(skin, theirSkin)
+                << " m): the automatic skin follows the largest particle "
+                << "of each processor; set dem/skin in "
+                << "constant/demProperties (e.g. 0.2 of the largest "
+                << "diameter)" << exit(FatalError);
+        }
+        partnerSkin_[k] = theirSkin;
+        partnerDead = partnerDead || (flags & isDead);
+        renew[k] =
+            !dead_ && !(flags & isDead) && (ask[k] || (flags & askRenew));
+        if ((flags & hasStates) && !renew[k])
+        {
+            if (nd != size_t(headerSize + 9*recvCount_[k]))
+            {
+                FatalErrorInFunction
+                    << "processor " << partners_[k] << " sent the states of "
+                    << label((nd - headerSize)/9) << " ghosts, "
+                    << recvCount_[k] << " expected; please report this"
+                    << exit(FatalError);
+            }
+            states[k].assign(in + headerSize, in + nd);
+            fresh[k] = true;
+        }
+    }
+
+    // phase 2: the new ghost sets of the renewing pairs
+    bool anyRenew = false;
+    for (const char b : renew) anyRenew = anyRenew || b;
+    List<std::vector<char>> sets(np);
+    if (anyRenew)
+    {
+        size_t gs = 0;
+        if (n)
+        {
+            world_.check
+            (
+                dem_world_pack_ghost(world_, 0, nullptr, &gs),
+                "dem_world_pack_ghost"
+            );
+        }
+        for (label k = 0; k < np; ++k)
+        {
+            if (!renew[k]) continue;
+            const FixedList<double, headerSize>& b = theirs[k];
+            const scalar rPair = max(rMax, b[7]);
+            std::vector<char>& o = sets[k];
+            o.assign(2*sizeof(int64_t), 0);
+            sendIds_[k].clear();
+            int64_t count = 0;
+            for (label i = 0; i < n; ++i)
+            {
+                const scalar reach = a.radius[i] + rPair + skin0_;
+                scalar d2 = 0;
+                for (direction c = 0; c < 3 && d2 < sqr(reach); ++c)
+                {
+                    d2 += sqr
+                    (
+                        axisGap
+                        (
+                            a.x[3*i + c], b[1 + c], b[4 + c], periodic_[c],
+                            boxHi_[c] - boxLo_[c]
+                        )
+                    );
+                }
+                if (d2 >= sqr(reach)) continue;
+                sendIds_[k].append(a.id[i]);
+                o.resize(o.size() + gs);
+                size_t sz = gs;
+                world_.check
+                (
+                    dem_world_pack_ghost
+                    (
+                        world_, size_t(i), o.data() + o.size() - gs, &sz
+                    ),
+                    "dem_world_pack_ghost"
+                );
+                ++count;
+            }
+            const int64_t pre[2] = {int64_t(gs), count};
+            std::memcpy(o.data(), pre, sizeof pre);
+            UOPstream::write
+            (
+                Pstream::commsTypes::nonBlocking, partners_[k], o.data(),
+                std::streamsize(o.size()), tagSet
+            );
+        }
+        sendReorder_ = -1;
+        for (label k = 0; k < np; ++k)
+        {
+            if (!renew[k]) continue;
+            buf.clearStorage();
+            label pos = 0;
+            UIPstream is
+            (
+                Pstream::commsTypes::scheduled, partners_[k], buf, pos, tagSet
+            );
+            recvSet_[k].assign(buf.cdata(), buf.cdata() + buf.size());
+            int64_t pre[2] = {0, 0};
+            if (recvSet_[k].size() >= sizeof pre)
+            {
+                std::memcpy(pre, recvSet_[k].data(), sizeof pre);
+            }
+            if
+            (
+                recvSet_[k].size() < sizeof pre
+             || recvSet_[k].size() != sizeof pre + size_t(pre[0]*pre[1])
+            )
+            {
+                FatalErrorInFunction
+                    << "a DEM ghost set from processor " << partners_[k]
+                    << " has " << label(recvSet_[k].size()) << " bytes, "
+                    << "which do not match its count; please report this"
+                    << exit(FatalError);
+            }
+            recvCount_[k] = label(pre[1]);
+        }
+    }
+
+    // the ghosts here: all sets unpacked again when any pair renewed (the
+    // others then get this step's states), else the states set in place
+    const bool unpack = anyRenew || (start && !dead_);
+    if (unpack)
+    {
+        world_.check(dem_world_clear_ghosts(world_), "dem_world_clear_ghosts");
+        label ng = 0;
+        for (label k = 0; k < np; ++k)
+        {
+            recvFirst_[k] = ng;
+            const std::vector<char>& set = recvSet_[k];
+            if (set.size() < 2*sizeof(int64_t)) continue;
+            int64_t pre[2];
+            std::memcpy(pre, set.data(), sizeof pre);
+            for (int64_t j = 0; j < pre[1]; ++j)
+            {
+                world_.check
+                (
+                    dem_world_unpack_particle
+                    (
+                        world_, set.data() + sizeof pre + j*pre[0],
+                        size_t(pre[0]), 1
+                    ),
+                    "dem_world_unpack_particle (ghost)"
+                );
+            }
+            ng += label(pre[1]);
+        }
+        // a rebuild also without ghosts (clear_ghosts of none keeps the
+        // list): the displacement bounds count on it
+        world_.check
+        (
+            dem_world_invalidate_list(world_), "dem_world_invalidate_list"
+        );
+    }
+    for (label k = 0; k < np; ++k)
+    {
+        if (!fresh[k] || !recvCount_[k]) continue;
         world_.check
         (
             dem_world_set_ghost_states
             (
-                world_, size_t(recvFirst_[r]), size_t(recvCount_[r]), in.data()
+                world_, size_t(recvFirst_[k]), size_t(recvCount_[k]),
+                states[k].data()
             ),
             "dem_world_set_ghost_states"
         );
+    }
+    UPstream::waitRequests(req0);
+
+    // the displacement bounds (processorGhosts.C, top)
+    const bool rebuilt = !dead_ && (stale || unpack);
+    if (start)
+    {
+        S_ = 0;
+        sRef_ = 0;
+    }
+    else if (rebuilt)
+    {
+        S_ += d + 1.2e-7*max(mag(ownBox_.min()), mag(ownBox_.max()));
+        for (label k = 0; k < np; ++k)
+        {
+            if (renew[k]) sRef_[k] = S_;
+        }
+    }
+    if (partnerDead && !dead_)
+    {
+        // a partner stopped: its ghosts here are no longer refreshed
+        dead_ = true;
     }
     tComm_ += std::chrono::duration<scalar>
     (
         std::chrono::steady_clock::now() - t0
     ).count();
+    return rebuilt;
 }
 
 
-dem_status Foam::processorGhosts::step(const label m, std::string& failure)
+// * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
+
+dem_status Foam::processorGhosts::step(const label m)
 {
+    if (!setUp_)
+    {
+        // once, outside the marked DEM sub-steps (a collective)
+        setup();
+    }
     const subStepMark mark(static_cast<int>(m));
 
-    // the first failure on any processor stops all of them at the same
-    // point, each with that processor's message
-    auto agree = [&](const dem_status st) -> dem_status
+    auto why = [&](const dem_status st)
     {
-        label first = st != DEM_OK ? Pstream::myProcNo() : Pstream::nProcs();
-        reduce(first, minOp<label>());
-        if (first == Pstream::nProcs()) return DEM_OK;
-        List<string> why(Pstream::nProcs());
-        if (st != DEM_OK)
-        {
-            why[Pstream::myProcNo()] =
-                std::string(dem_status_string(st)) + ": " + world_.lastError();
-        }
-        Pstream::gatherList(why);
-        Pstream::scatterList(why);
-        failure = "DEM core: " + why[first] + " (processor "
-          + std::to_string(first) + ")";
-        return st != DEM_OK ? st : DEM_ERR_STATE;
+        return std::string(dem_status_string(st)) + ": " + world_.lastError();
     };
     // ghosts before the first drift too: it may rebuild the neighbour list
     // (after a migration), which must see them to keep the contact history
     // of pairs across processors
-    exchange();
+    talk(true, false, 0);
     for (label s = 0; s < m; ++s)
     {
-        dem_status st = agree(world_.tryDrift());
-        if (st != DEM_OK) return st;
-        // a new ghost set when any processor rebuilds its neighbour list
-        // (so do all), else the same ghosts with their new state
-        bool stale = dem_world_list_stale(world_);
-        reduce(stale, orOp<bool>());
-        if (stale)
+        ++stepCount_;
+        bool pending = false;
+        if (!dead_)
         {
-            exchange();
-            world_.check
-            (
-                dem_world_invalidate_list(world_), "dem_world_invalidate_list"
-            );
+            const dem_status st = world_.tryDrift();
+            if (st != DEM_OK) fail(st, why(st));
+            else pending = true;
         }
-        else
+        const bool stale = pending && dem_world_list_stale(world_);
+        const scalar d = pending ? dem_world_drift_displacement(world_) : 0;
+        talk(false, stale, d);
+        if (pending)
         {
-            forward();
+            // also after a partner stopped (completes the step)
+            const dem_status st = world_.tryForces();
+            if (st != DEM_OK) fail(st, why(st));
         }
-        st = agree(world_.tryForces());
-        if (st != DEM_OK) return st;
     }
-    // the contacts of the last step while the ghosts are there
-    world_.captureContacts();
-    return DEM_OK;
+    if (!dead_)
+    {
+        // the contacts of the last step while the ghosts are there
+        world_.captureContacts();
+    }
+    return ownStatus_;
+}
+
+
+dem_status Foam::processorGhosts::agree(std::string& failure)
+{
+    const label nProcs = Pstream::nProcs();
+    const label me = Pstream::myProcNo();
+    // the earliest DEM step, then the lowest processor
+    label first = ownStatus_ != DEM_OK ? failStep_*nProcs + me : labelMax;
+    reduce(first, minOp<label>());
+    dem_status st = DEM_OK;
+    if (first != labelMax)
+    {
+        List<string> why(nProcs);
+        if (ownStatus_ != DEM_OK)
+        {
+            why[me] = failMessage_;
+        }
+        Pstream::gatherList(why);
+        Pstream::scatterList(why);
+        const label p = first % nProcs;
+        failure = "DEM core: " + why[p] + " (processor "
+          + std::to_string(p) + ")";
+        st = ownStatus_ != DEM_OK ? ownStatus_ : DEM_ERR_STATE;
+    }
+    dead_ = false;
+    ownStatus_ = DEM_OK;
+    failStep_ = 0;
+    failMessage_.clear();
+    stepCount_ = 0;
+    return st;
 }
 
 
