@@ -56,18 +56,21 @@ int main(void)
            dem_world_setup_diff(a, b, NULL, 0) == 0);
     dem_world_destroy(&b);
 
-    b = setup(DEM_CONTACT_HERTZ_MINDLIN, 0.5, 0, 1);
-    expect("setup_diff: friction 0.4 vs 0.5 named", names(a, b, "material 0: friction 0.4, the state's 0.5"));
-    dem_world_destroy(&b);
-    b = setup(DEM_CONTACT_HERTZ_MINDLIN_NO_SLIP, 0.4, 0, 1);
-    expect("setup_diff: contact law named", names(a, b, "contactLaw: hertzMindlin, the state's hertzMindlinNoSlip"));
-    dem_world_destroy(&b);
-    b = setup(DEM_CONTACT_HERTZ_MINDLIN, 0.4, 0, 0);
-    expect("setup_diff: a material pair more named", names(a, b, "1 material pairs, the state 0"));
-    dem_world_destroy(&b);
-    b = setup(DEM_CONTACT_HERTZ_MINDLIN, 0.4, 1, 1);
-    expect("setup_diff: wall material named", names(a, b, "wall 0: material 0, the state's 1"));
-    dem_world_destroy(&b);
+    /* one change each: law, friction of material 0, wall material, pair */
+    const struct { dem_contact_law law; double mu; int wall, pair; const char *name, *want; } cases[] = {
+        {DEM_CONTACT_HERTZ_MINDLIN, 0.5, 0, 1, "friction 0.4 vs 0.5", "material 0: friction 0.4, the state's 0.5"},
+        {DEM_CONTACT_HERTZ_MINDLIN_NO_SLIP, 0.4, 0, 1, "contact law",
+         "contactLaw: hertzMindlin, the state's hertzMindlinNoSlip"},
+        {DEM_CONTACT_HERTZ_MINDLIN, 0.4, 0, 0, "a material pair more", "1 material pairs, the state 0"},
+        {DEM_CONTACT_HERTZ_MINDLIN, 0.4, 1, 1, "wall material", "wall 0: material 0, the state's 1"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
+        b = setup(cases[k].law, cases[k].mu, cases[k].wall, cases[k].pair);
+        char name[96];
+        snprintf(name, sizeof name, "setup_diff: %s named", cases[k].name);
+        expect(name, names(a, b, cases[k].want));
+        dem_world_destroy(&b);
+    }
     dem_world_destroy(&a);
     return check_exit();
 }
