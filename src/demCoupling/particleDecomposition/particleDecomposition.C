@@ -36,8 +36,6 @@ Description
 
 #include "particleDecomposition.H"
 #include "processorPolyPatch.H"
-#include "UIPstream.H"
-#include "UOPstream.H"
 #include "OSspecific.H"
 #include <chrono>
 #include <cstring>
@@ -318,19 +316,10 @@ void Foam::particleDecomposition::migrate
     const label np = partners.size();
     const label nOut = leaving.size();
     const int tagOffer = 7311, tagAnswer = 7312, tagTake = 7313;
-    auto receive = [&](const label r, const int tag, DynamicList<char>& buf)
+    const auto& receive = processorGhosts::receiveBytes;
+    auto send = [](const label r, const int tag, const std::vector<char>& b)
     {
-        buf.clearStorage();
-        label pos = 0;
-        UIPstream is(Pstream::commsTypes::scheduled, r, buf, pos, tag);
-    };
-    auto send = [&](const label r, const int tag, const std::vector<char>& b)
-    {
-        UOPstream::write
-        (
-            Pstream::commsTypes::nonBlocking, r, b.data(),
-            std::streamsize(b.size()), tag
-        );
+        processorGhosts::sendBytes(r, tag, b.data(), b.size());
     };
     auto put = [](std::vector<char>& b, const void* p, const size_t sz)
     {

@@ -149,6 +149,29 @@ namespace
 }
 
 
+void Foam::processorGhosts::sendBytes
+(
+    const label toProc, const int tag, const char* data, const size_t n
+)
+{
+    UOPstream::write
+    (
+        Pstream::commsTypes::nonBlocking, toProc, data, std::streamsize(n), tag
+    );
+}
+
+
+void Foam::processorGhosts::receiveBytes
+(
+    const label fromProc, const int tag, DynamicList<char>& buf
+)
+{
+    buf.clearStorage();
+    label pos = 0;
+    UIPstream is(Pstream::commsTypes::scheduled, fromProc, buf, pos, tag);
+}
+
+
 void Foam::processorGhosts::setup()
 {
     const label nProcs = Pstream::nProcs();
@@ -465,11 +488,10 @@ bool Foam::processorGhosts::talk
                 }
             }
         }
-        UOPstream::write
+        sendBytes
         (
-            Pstream::commsTypes::nonBlocking, partners_[k],
-            reinterpret_cast<const char*>(o.data()),
-            std::streamsize(o.size()*sizeof(double)), tagHeader
+            partners_[k], tagHeader, reinterpret_cast<const char*>(o.data()),
+            o.size()*sizeof(double)
         );
     }
 
@@ -481,12 +503,7 @@ bool Foam::processorGhosts::talk
     DynamicList<char> buf;
     for (label k = 0; k < np; ++k)
     {
-        buf.clearStorage();
-        label pos = 0;
-        UIPstream is
-        (
-            Pstream::commsTypes::scheduled, partners_[k], buf, pos, tagHeader
-        );
+        receiveBytes(partners_[k], tagHeader, buf);
         const size_t nd = size_t(buf.size())/sizeof(double);
         const double* in = reinterpret_cast<const double*>(buf.cdata());
         if (nd < size_t(headerSize))
@@ -587,22 +604,13 @@ bool Foam::processorGhosts::talk
             }
             const int64_t pre[2] = {int64_t(gs), count};
             std::memcpy(o.data(), pre, sizeof pre);
-            UOPstream::write
-            (
-                Pstream::commsTypes::nonBlocking, partners_[k], o.data(),
-                std::streamsize(o.size()), tagSet
-            );
+            sendBytes(partners_[k], tagSet, o.data(), o.size());
         }
         sendReorder_ = -1;
         for (label k = 0; k < np; ++k)
         {
             if (!renew[k]) continue;
-            buf.clearStorage();
-            label pos = 0;
-            UIPstream is
-            (
-                Pstream::commsTypes::scheduled, partners_[k], buf, pos, tagSet
-            );
+            receiveBytes(partners_[k], tagSet, buf);
             recvSet_[k].assign(buf.cdata(), buf.cdata() + buf.size());
             int64_t pre[2] = {0, 0};
             if (recvSet_[k].size() >= sizeof pre)
