@@ -73,7 +73,6 @@ int main(int argc, char *argv[])
     #include "createControl.H"
     #include "createTimeControls.H"
     #include "createFields.H"
-    #include "demDeltaTRead.H"
     #include "initContinuityErrs.H"
 
     if (args.found("checkInput"))
