@@ -247,23 +247,23 @@ Foam::demCoupling::demCoupling
 
     if (!restoreState(mesh.time().timePath()/"uniform", initial))
     {
-        // decomposed: every processor creates (and settles) the whole set,
-        // then keeps the particles in its cells
+        // decomposed: every processor creates the whole set, keeps the
+        // particles in its cells and settles those (settle())
         insertion_.addInitialParticles();
         checkInitialState();
         if (checkOnly) return;
+        decomposition_.distributeByCell();
         if (nSettle > 0)
         {
             Info<< "demCoupling: settling " << nSettle << " DEM steps ("
                 << tSettle << " s, DEM time " << t0 - nSettle*demDt_
                 << " to " << t0 << ") without fluid"
-                << (Pstream::parRun() ? " (every processor the whole set)" : "")
+                << (Pstream::parRun() ? " (decomposed)" : "")
                 << endl;
             settle(nSettle);
         }
         // exactly the fluid's (the sum of the steps may differ by round-off)
         world_.check(dem_world_set_time(world_, t0), "dem_world_set_time");
-        decomposition_.distributeByCell();
     }
     else
     {

@@ -11,7 +11,9 @@ Description
         state, runaway overlap, lost particles, non-finite fluid) can be
         undone and the last good state written (demFoam writeLastGood.H);
       - nonFinite(): scan of the fluid state;
-      - settle(): the DEM alone before the start time, with progress lines;
+      - settle(): the DEM alone before the start time, with progress lines
+        (decomposed: each processor its own particles, with ghosts and
+        migration as in the coupled steps);
       - progress(): one log line at progressInterval (wall seconds) or every
         progressSteps fluid steps (couplingDiagnostics).
 
@@ -140,14 +142,45 @@ void Foam::demCoupling::settle(const int64_t nSettle)
     // (the fluid's clock: the settling ends at the start time)
     const auto w0 = std::chrono::steady_clock::now();
     scalar wallLast = 0;
-    const int64_t piece = 1000;
+    if (!Pstream::parRun())
+    {
+        const int64_t piece = 1000;
+        for (int64_t done = 0; done < nSettle; )
+        {
+            const int64_t m = std::min(piece, nSettle - done);
+            world_.step(m, "dem_world_step (settling, before the fluid starts)");
+            done += m;
+            diag_.settling(done, nSettle, w0, wallLast);
+        }
+        return;
+    }
+
+    // decomposed: each processor its own particles, as in the coupled
+    // steps (ghosts from the DEM partners; a particle stays with its
+    // processor for a fluid step's worth of DEM steps, then moves to the
+    // processor whose cells hold it: docs/parallel.md)
+    const int64_t piece = subSteps(mesh_.time().deltaTValue());
+    DynamicList<label> hostById;
+    label moved = 0;
     for (int64_t done = 0; done < nSettle; )
     {
         const int64_t m = std::min(piece, nSettle - done);
-        world_.step(m, "dem_world_step (settling, before the fluid starts)");
+        ghosts_.step(label(m));
+        std::string why;
+        if (ghosts_.agree(why) != DEM_OK)
+        {
+            FatalErrorInFunction
+                << "dem_world_step (settling, before the fluid starts) at DEM "
+                << "time " << dem_world_time(world_) << " s: " << why.c_str()
+                << exit(FatalError);
+        }
+        moved += decomposition_.moveToOwners(hostById);
         done += m;
         diag_.settling(done, nSettle, w0, wallLast);
     }
+    Info<< "demCoupling: settled decomposed: "
+        << returnReduce(moved, sumOp<label>())
+        << " moves of particles between processors" << endl;
 }
 
 

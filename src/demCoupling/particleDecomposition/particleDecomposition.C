@@ -29,8 +29,10 @@ Description
 
     Walls: every processor adds the wall triangles of all processors (a
     particle near a processor boundary may touch a wall face of the
-    neighbour).  Initial particles and settling: every processor creates and
-    settles the whole set (same seed, same result), then keeps its own.
+    neighbour).  Initial particles: every processor creates the whole set
+    (same seed, same result) and keeps its own; the settling is then
+    decomposed like the coupled DEM steps (ghosts, and moveToOwners after
+    every fluid step's worth of DEM steps).
 
 \*---------------------------------------------------------------------------*/
 
@@ -217,6 +219,43 @@ void Foam::particleDecomposition::distributeByCell()
         << Pstream::nProcs() << " processors (fewest "
         << returnReduce(nMine, minOp<label>()) << ", most "
         << returnReduce(nMine, maxOp<label>()) << ")" << endl;
+}
+
+
+Foam::label Foam::particleDecomposition::moveToOwners(DynamicList<label>& hostById)
+{
+    const dem_arrays a = world_.arrays();
+    const label n = label(a.n_owned);
+    DynamicList<label> leaving, exitFace;
+    for (label i = 0; i < n; ++i)
+    {
+        label& host = idSlot(hostById, a.id[i]);
+        label f = -1;
+        host = locator_.locate(box_.wrapped(a.x, i), host, f);
+        if (host < 0)
+        {
+            leaving.append(i);
+            exitFace.append(f);
+        }
+    }
+    boolList taken;
+    labelList exitPatch;
+    migrate(leaving, exitFace, taken, exitPatch, hostById);
+    // from the highest index down (removal swaps with the last)
+    label given = 0;
+    for (label k = leaving.size() - 1; k >= 0; --k)
+    {
+        if (taken[k])
+        {
+            world_.check
+            (
+                dem_world_remove_particle(world_, size_t(leaving[k]), -1),
+                "dem_world_remove_particle"
+            );
+            ++given;
+        }
+    }
+    return given;
 }
 
 
