@@ -220,6 +220,11 @@ struct dem_world {
     int64_t inserted, removed;
     int64_t reorders;
 
+    /* keep filter of the set-up (dem_world_set_keep_filter): placed but not
+       stored particles as x, y, z, r (fill.c) */
+    dem_inside_fn keep; void *keep_user;
+    double *shadow; size_t nshadow, capshadow;
+
     /* last force evaluation */
     double max_overlap;
     size_t pair_contacts, wall_contacts;
@@ -263,6 +268,9 @@ dem_status dem_scratch_ensure(dem_world *w);
 #define DEM_SCRATCH_EXTRA 80  /* entries beyond the longest row (block of the phased loop) */
 void       dem_forces(dem_world *w, double hist_dt);
 dem_status dem_append_particle(dem_world *w, const dem_particle *p);
+/* A particle the keep filter refuses: its id taken, counted as inserted,
+   its centre and radius in the shadow list (fill.c) */
+dem_status dem_shadow_particle(dem_world *w, const dem_particle *p);
 dem_status dem_particle_check(dem_world *w, const dem_particle *p, const char *what);
 dem_status dem_room_for(dem_world *w, size_t n, const char *what);
 int        dem_mass_ok(double radius, double density);

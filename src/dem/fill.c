@@ -8,6 +8,9 @@
   DEM_FILL_TRIES random positions inside the region and accepted if it
   overlaps neither an existing particle nor one placed before it (checked
   on a private linked-cell grid).  Seeded by dem_config.seed: deterministic.
+  With a keep filter (dem_world_set_keep_filter, decomposed set-up) the
+  particles it refuses are placed all the same but kept as centre and radius
+  only (the shadow list): the draws and ids stay the unfiltered ones.
 \*---------------------------------------------------------------------------*/
 #include "dem_private.h"
 #include <math.h>
@@ -140,21 +143,25 @@ static dem_status fill(dem_world *w, const region *rg, size_t n, const dem_parti
     double dmax;
     dem_status s = dem_template_check(w, t, &dmax, rg->kind == 0 ? "fill_box" : "fill_cylinder");
     if (s) return s;
-    if ((s = dem_room_for(w, n, rg->kind == 0 ? "fill_box" : "fill_cylinder"))) return s;
+    if ((s = dem_room_for(w, w->keep ? 0 : n, rg->kind == 0 ? "fill_box" : "fill_cylinder"))) return s;
     if (n == 0) return DEM_OK;
     double amax = 0.5 * dmax;
     for (size_t i = 0; i < w->n; ++i) amax = fmax(amax, w->rad[i]);
+    for (size_t i = 0; i < w->nshadow; ++i) amax = fmax(amax, w->shadow[4 * i + 3]);
     pgrid g;
     double lo[3], hi[3];
     for (int k = 0; k < 3; ++k) { lo[k] = rg->lo[k] - 2 * amax; hi[k] = rg->hi[k] + 2 * amax; }
-    if (!pgrid_init(&g, lo, hi, 2.0 * amax, n + w->n)) { pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
-    for (size_t i = 0; i < w->n; ++i) {
-        const double *x = w->x + 3 * i;
+    if (!pgrid_init(&g, lo, hi, 2.0 * amax, n + w->n + w->nshadow)) { pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
+    /* the stored particles and the shadow ones (keep filter), in the order
+       they were placed: the grid is the unfiltered fill's */
+    for (size_t i = 0; i < w->n + w->nshadow; ++i) {
+        const double *x = i < w->n ? w->x + 3 * i : w->shadow + 4 * (i - w->n);
+        double r = i < w->n ? w->rad[i] : x[3];
         int in = 1;
         for (int k = 0; k < 3; ++k) in = in && x[k] > lo[k] && x[k] < hi[k];
-        if (in && !pgrid_add(&g, x, w->rad[i])) { pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
+        if (in && !pgrid_add(&g, x, r)) { pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
     }
-    s = dem_reserve(w, w->n + w->ng + n);
+    s = dem_reserve(w, w->n + w->ng + (w->keep ? 0 : n));
     if (s) { pgrid_free(&g); return s; }
     size_t done = 0;
     for (size_t q = 0; q < n; ++q) {
@@ -175,7 +182,7 @@ static dem_status fill(dem_world *w, const region *rg, size_t n, const dem_parti
         memcpy(p.x, x, sizeof x);
         memcpy(p.v, t->velocity, sizeof p.v);
         p.radius = r; p.density = rho; p.material = t->material;
-        s = dem_append_particle(w, &p);
+        s = w->keep && !w->keep(x, w->keep_user) ? dem_shadow_particle(w, &p) : dem_append_particle(w, &p);
         if (s) { pgrid_free(&g); return s; }
         w->inserted++;
         done++;
@@ -184,6 +191,31 @@ static dem_status fill(dem_world *w, const region *rg, size_t n, const dem_parti
     if (inserted) *inserted = done;
     if (done < n)
         return DEM_FAIL(w, DEM_ERR_FULL, "placed %zu of %zu particles (%d attempts each)", done, n, DEM_FILL_TRIES);
+    return DEM_OK;
+}
+
+dem_status dem_shadow_particle(dem_world *w, const dem_particle *p)
+{
+    dem_status s = dem_particle_check(w, p, "add particle (not kept)");
+    if (s) return s;
+    if (w->nshadow == w->capshadow) {
+        size_t nc = w->capshadow ? w->capshadow + w->capshadow / 2 : 1024;
+        double *a = realloc(w->shadow, 4 * nc * sizeof(double));
+        if (!a) return DEM_FAIL(w, DEM_ERR_NOMEM, "keep filter: shadow list of %zu particles", nc);
+        w->shadow = a; w->capshadow = nc;
+    }
+    int64_t id = p->id >= 0 ? p->id : w->next_id;
+    if (id >= w->next_id) w->next_id = id + 1;
+    double *q = w->shadow + 4 * w->nshadow++;
+    q[0] = p->x[0]; q[1] = p->x[1]; q[2] = p->x[2]; q[3] = p->radius;
+    return DEM_OK;
+}
+
+dem_status dem_world_set_keep_filter(dem_world *w, dem_inside_fn keep, void *user)
+{
+    if (!w) return DEM_ERR_ARG;
+    w->keep = keep; w->keep_user = user;
+    if (!keep) { free(w->shadow); w->shadow = NULL; w->nshadow = w->capshadow = 0; }
     return DEM_OK;
 }
 

@@ -194,7 +194,7 @@ dem_status dem_world_add_particles(dem_world *w, size_t n, const dem_particle *p
     if (!w) return DEM_ERR_ARG;
     if (n) DEM_NEED(w, p, "add_particles");
     if (w->nmat == 0) return DEM_FAIL(w, DEM_ERR_STATE, "add_particles: no materials yet; add a material before particles");
-    dem_status s = dem_room_for(w, n, "add_particles");
+    dem_status s = dem_room_for(w, w->keep ? 0 : n, "add_particles");
     if (s) return s;
     /* all or nothing: check every particle first */
     for (size_t i = 0; i < n; ++i) {
@@ -204,10 +204,11 @@ dem_status dem_world_add_particles(dem_world *w, size_t n, const dem_particle *p
         if (p[i].id < 0 && w->next_id > INT64_MAX - 1 - (int64_t)i)
             return DEM_FAIL(w, DEM_ERR_RANGE, "%s: no free particle id left", what);
     }
-    s = dem_reserve(w, w->n + w->ng + n);
+    s = dem_reserve(w, w->n + w->ng + (w->keep ? 0 : n));
     if (s) return s;
     for (size_t i = 0; i < n; ++i) {
-        s = dem_append_particle(w, &p[i]);
+        s = w->keep && !w->keep(p[i].x, w->keep_user) ? dem_shadow_particle(w, &p[i])
+                                                        : dem_append_particle(w, &p[i]);
         if (s) return s;
         w->inserted++;
     }

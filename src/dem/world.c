@@ -59,6 +59,7 @@ void dem_world_destroy(dem_world **pw)
     free(w->tri_mesh); free(w->tri_local); free(w->tcell_start); free(w->tcell_item);
     for (int i = 0; i < w->ninlets; ++i) free(w->inlets[i].poly);
     free(w->inlets); free(w->outlets); free(w->rec); free(w->scratch); free(w->crec);
+    free(w->shadow);
     free(w);
     *pw = NULL;
 }

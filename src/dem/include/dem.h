@@ -313,6 +313,15 @@ dem_status dem_world_fill_cylinder(dem_world *w, const double base[3], const dou
                                    double radius, double length, size_t n,
                                    const dem_particle_template *t, size_t *inserted);
 
+/** Keep filter for the set-up of a decomposed run (docs/parallel.md, "Initial
+ *  particles and settling"): while set, a particle that add_particles or a
+ *  fill places with keep(x, user) == 0 is not stored.  It still takes its
+ *  id and counts as inserted, and its centre and radius are kept in a
+ *  shadow list that later fills avoid, so that every draw and every id is
+ *  the unfiltered one (*inserted of a fill counts it too).  NULL clears the
+ *  filter and the shadow list.  Not part of the saved state. */
+dem_status dem_world_set_keep_filter(dem_world *w, dem_inside_fn keep, void *user);
+
 typedef enum { DEM_RATE_NUMBER, DEM_RATE_MASS } dem_rate_kind;
 /** Stream insertion through a planar polygon (nv vertices, 3*nv doubles) at a
  *  rate [1/s or kg/s] between t_start and t_end, with the template velocity. */
