@@ -247,9 +247,12 @@ Foam::demCoupling::demCoupling
 
     if (!restoreState(mesh.time().timePath()/"uniform", initial))
     {
-        // decomposed: every processor creates the whole set, keeps the
-        // particles in its cells and settles those (settle())
+        // decomposed: every processor draws the whole set but stores only
+        // the particles near its mesh (keepNear), checks those, keeps the
+        // ones in its cells and settles them (settle())
+        decomposition_.keepNear(insertion_.initialDiameterMax());
         insertion_.addInitialParticles();
+        decomposition_.keepNearEnd();
         checkInitialState();
         if (checkOnly) return;
         decomposition_.distributeByCell();

@@ -462,33 +462,64 @@ void Foam::demCoupling::checkInitialState()
     dem_arrays a = world_.arrays();
     const label n = label(a.n_owned);
 
-    // centres inside the mesh (decomposed: in some processor's cells; every
-    // processor holds the whole initial set here)
+    // centres inside the mesh (decomposed: in some processor's cells; each
+    // processor holds the particles near its mesh here, so the whole set
+    // is checked and every overlapping pair is seen by some processor)
     const labelList owner(decomposition_.cellOwners());
-    label nOut = 0, firstOut = -1;
+    const bool near = decomposition_.nearOnly();
+    const label me = Pstream::myProcNo();
+    label nOut = 0, nOwn = 0, firstOut = -1;
     for (label i = 0; i < n; ++i)
     {
         if (owner[i] < 0)
         {
-            if (firstOut < 0) firstOut = i;
+            if (firstOut < 0 || a.id[i] < a.id[firstOut]) firstOut = i;
             ++nOut;
         }
+        nOwn += owner[i] == me;
+    }
+    const label nAll = near ? decomposition_.total() : n;
+    if (near)
+    {
+        // (one outside all cells but near several processors is seen by
+        // each of them: counted as the particles no processor owns)
+        nOut = nAll - returnReduce(nOwn, sumOp<label>());
     }
     if (nOut)
     {
+        // the lowest id seen outside (decomposed: over the processors)
         OStringStream os;
-        os << toVec(a.x, firstOut);
+        if (firstOut >= 0)
+        {
+            os  << "id " << label(a.id[firstOut]) << " at "
+                << toVec(a.x, firstOut);
+        }
+        std::string first(os.str());
+        if (near)
+        {
+            List<string> all(Pstream::nProcs());
+            labelList ids(Pstream::nProcs(), labelMax);
+            all[me] = first;
+            if (firstOut >= 0) ids[me] = label(a.id[firstOut]);
+            Pstream::gatherList(all);
+            Pstream::scatterList(all);
+            Pstream::gatherList(ids);
+            Pstream::scatterList(ids);
+            const label r = findMin(ids);
+            first =
+                ids[r] < labelMax ? std::string(all[r])
+              : std::string("outside every processor's mesh box");
+        }
         chk.fail
         (
             dict_.subDict("initialParticles"), "", "initialParticles",
-            "", std::to_string(nOut) + " of " + std::to_string(n)
+            "", std::to_string(nOut) + " of " + std::to_string(nAll)
           + " initial particles have their centre outside the mesh (the"
-            " first: id " + std::to_string(label(a.id[firstOut])) + " at "
-          + os.str() + "); allowed: every centre inside the mesh"
+            " first: " + first + "); allowed: every centre inside the mesh"
         );
     }
 
-    if (frozen_ || n == 0) return;
+    if (frozen_ || returnReduce(n, sumOp<label>()) == 0) return;
 
     // overlaps between particles: cell list with the largest diameter
     const scalar limit = dict_.getOrDefault<scalar>("maxInitialOverlap", 0.05);
@@ -529,20 +560,46 @@ void Foam::demCoupling::checkInitialState()
             }
         }
     }
-    if (worst > limit)
+    // (decomposed: the worst over the processors)
+    const scalar worstAll = near ? returnReduce(worst, maxOp<scalar>()) : worst;
+    if (worstAll > limit)
     {
         OStringStream os;
-        os  << "particles " << label(a.id[wi]) << " at " << toVec(a.x, wi)
-            << " and " << label(a.id[wj]) << " at " << toVec(a.x, wj)
-            << " overlap by " << worst << " of the smaller diameter; allowed"
-            << " overlap <= maxInitialOverlap " << limit
-            << " (move them apart, or raise maxInitialOverlap)";
-        chk.fail(dict_, "", "initialParticles", "", os.str());
+        if (worst == worstAll)
+        {
+            os  << "particles " << label(a.id[wi]) << " at " << toVec(a.x, wi)
+                << " and " << label(a.id[wj]) << " at " << toVec(a.x, wj)
+                << " overlap by " << worst << " of the smaller diameter;"
+                << " allowed overlap <= maxInitialOverlap " << limit
+                << " (move them apart, or raise maxInitialOverlap)";
+        }
+        std::string why(os.str());
+        if (near)
+        {
+            List<string> all(Pstream::nProcs());
+            all[me] = why;
+            Pstream::gatherList(all);
+            Pstream::scatterList(all);
+            for (const string& w : all)
+            {
+                if (!w.empty())
+                {
+                    why = w;
+                    break;
+                }
+            }
+        }
+        chk.fail(dict_, "", "initialParticles", "", why);
     }
 
-    // the DEM time step against the contact time
+    // the DEM time step against the contact time (decomposed: the
+    // smallest over the processors' particles)
     double dtMax = 0;
     world_.check(dem_world_max_dt(world_, &dtMax), "dem_world_max_dt");
+    if (near)
+    {
+        reduce(dtMax, minOp<double>());
+    }
     if (demDt_ > dtMax)
     {
         const dictionary& demDict = dict_.subDict("dem");

@@ -29,10 +29,11 @@ Description
 
     Walls: every processor adds the wall triangles of all processors (a
     particle near a processor boundary may touch a wall face of the
-    neighbour).  Initial particles: every processor creates the whole set
-    (same seed, same result) and keeps its own; the settling is then
-    decomposed like the coupled DEM steps (ghosts, and moveToOwners after
-    every fluid step's worth of DEM steps).
+    neighbour).  Initial particles: every processor draws the whole set
+    (same seed, same result) but stores only the particles near its mesh
+    (keepNear: the core's keep filter), checks them and keeps its own; the
+    settling is then decomposed like the coupled DEM steps (ghosts, and
+    moveToOwners after every fluid step's worth of DEM steps).
 
 \*---------------------------------------------------------------------------*/
 
@@ -41,6 +42,7 @@ Description
 #include "OSspecific.H"
 #include <chrono>
 #include <cstring>
+#include <unordered_map>
 #include <vector>
 
 using namespace Foam::demTools;
@@ -62,7 +64,9 @@ Foam::particleDecomposition::particleDecomposition
     locator_(locator),
     box_(box),
     ghosts_(ghosts),
-    tComm_(commTime)
+    tComm_(commTime),
+    near_(false),
+    nTotal_(0)
 {}
 
 
@@ -158,8 +162,124 @@ bool Foam::particleDecomposition::restore
 }
 
 
+bool Foam::particleDecomposition::inBox
+(
+    const boundBox& bb,
+    const double x[3]
+) const
+{
+    return bb.contains(box_.wrapped(x, 0)) || bb.contains(toVec(x, 0));
+}
+
+
+int Foam::particleDecomposition::keepNearFn(const double x[3], void* self)
+{
+    const particleDecomposition& d = *static_cast<particleDecomposition*>(self);
+    return d.inBox(d.nearBox_, x);
+}
+
+
+void Foam::particleDecomposition::keepNear(const scalar reach)
+{
+    if (!Pstream::parRun()) return;
+    // a pair that overlaps has one centre in some processor's cells and the
+    // other within one largest diameter of it
+    const scalar grow = reach*(1 + 1e-6);
+    nearBox_ = boundBox(mesh_.points(), false);
+    nearBox_.min() -= vector::uniform(grow);
+    nearBox_.max() += vector::uniform(grow);
+    nearBoxes_.setSize(Pstream::nProcs());
+    nearBoxes_[Pstream::myProcNo()] = nearBox_;
+    Pstream::gatherList(nearBoxes_);
+    Pstream::scatterList(nearBoxes_);
+    world_.check
+    (
+        dem_world_set_keep_filter(world_, &keepNearFn, this),
+        "dem_world_set_keep_filter"
+    );
+    near_ = true;
+}
+
+
+void Foam::particleDecomposition::keepNearEnd()
+{
+    if (!near_) return;
+    dem_stats st;
+    world_.check(dem_world_stats(world_, &st), "dem_world_stats");
+    nTotal_ = label(st.inserted);
+    world_.check
+    (
+        dem_world_set_keep_filter(world_, nullptr, nullptr),
+        "dem_world_set_keep_filter"
+    );
+    const label nHere = label(dem_world_count(world_));
+    Info<< "demCoupling: initial set of " << nTotal_ << " particles, each "
+        << "processor stores those near its mesh (fewest "
+        << returnReduce(nHere, minOp<label>()) << ", most "
+        << returnReduce(nHere, maxOp<label>()) << ")" << endl;
+}
+
+
+Foam::labelList Foam::particleDecomposition::nearOwners() const
+{
+    const dem_arrays a = world_.arrays();
+    const label n = label(a.n_owned);
+    const label me = Pstream::myProcNo();
+    labelList owner(n, -1);
+    std::unordered_map<int64_t, label> index;
+    List<std::vector<int64_t>> claims(Pstream::nProcs());
+    for (label i = 0; i < n; ++i)
+    {
+        index[a.id[i]] = i;
+        if (!locator_.inside(box_.wrapped(a.x, i))) continue;
+        owner[i] = me;
+        forAll(nearBoxes_, q)
+        {
+            if (q != me && inBox(nearBoxes_[q], a.x + 3*i))
+            {
+                claims[q].push_back(a.id[i]);
+            }
+        }
+    }
+    // once, at set-up: one message to every other processor (most empty)
+    const int tag = 7321;
+    const label req0 = UPstream::nRequests();
+    forAll(claims, q)
+    {
+        if (q == me) continue;
+        processorGhosts::sendBytes
+        (
+            q, tag, reinterpret_cast<const char*>(claims[q].data()),
+            claims[q].size()*sizeof(int64_t)
+        );
+    }
+    DynamicList<char> buf;
+    forAll(claims, q)
+    {
+        if (q == me) continue;
+        processorGhosts::receiveBytes(q, tag, buf);
+        const label m = label(size_t(buf.size())/sizeof(int64_t));
+        for (label k = 0; k < m; ++k)
+        {
+            int64_t id;
+            std::memcpy(&id, buf.cdata() + k*sizeof(int64_t), sizeof id);
+            const auto it = index.find(id);
+            if (it == index.end()) continue;
+            label& o = owner[it->second];
+            if (o < 0 || q < o) o = q;
+        }
+    }
+    UPstream::waitRequests(req0);
+    return owner;
+}
+
+
 Foam::labelList Foam::particleDecomposition::cellOwners() const
 {
+    if (near_)
+    {
+        return nearOwners();
+    }
     const dem_arrays a = world_.arrays();
     const label n = label(a.n_owned);
     const label none = Pstream::nProcs();
@@ -192,11 +312,17 @@ void Foam::particleDecomposition::distributeByCell()
 
     const labelList owner(cellOwners());
     const label me = Pstream::myProcNo();
-    const label nAll = owner.size();
+    // (nearOnly: the processor holds the particles near it, the whole set
+    // has total(); a particle in no processor's cells stopped the run in
+    // demCoupling::checkInitialState)
+    const bool near = near_;
+    const label nAll = near ? nTotal_ : owner.size();
+    near_ = false;
     // from the highest index down: removal swaps with the last
-    for (label i = nAll - 1; i >= 0; --i)
+    for (label i = owner.size() - 1; i >= 0; --i)
     {
-        const bool mine = owner[i] == me || (owner[i] < 0 && Pstream::master());
+        const bool mine =
+            owner[i] == me || (owner[i] < 0 && Pstream::master() && !near);
         if (!mine)
         {
             world_.check

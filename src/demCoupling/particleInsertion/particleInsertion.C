@@ -302,6 +302,20 @@ void Foam::particleInsertion::addInitialParticles()
 }
 
 
+Foam::scalar Foam::particleInsertion::initialDiameterMax() const
+{
+    scalar dMax = 0;
+    if (!dict_.found("initialParticles")) return dMax;
+    for (const entry& e : dict_.subDict("initialParticles"))
+    {
+        if (!e.isDict()) continue;
+        PtrList<scalarField> store;
+        dMax = max(dMax, distributionMax(readDistribution(e.dict(), "diameter", store)));
+    }
+    return dMax;
+}
+
+
 dem_distribution Foam::particleInsertion::readDistribution
 (
     const dictionary& parent,
