@@ -402,6 +402,16 @@ bool Foam::demCoupling::checkDictionary
             {
                 chk.fail(d, sc, "insideMesh", "", "only for type box or cylinder (a list's centres must all be inside the mesh)");
             }
+            if
+            (
+                type != "list" && Pstream::parRun()
+             && d.found("insideMesh") && d.get<bool>("insideMesh")
+            )
+            {
+                // the test sees this processor's cells only: the processors
+                // would draw different sets
+                chk.fail(d, sc, "insideMesh", "yes", "not in a decomposed run (each processor sees only its own cells, so each would draw another set); run serially to the first write and continue decomposed from that time (docs/parallel.md, \"From serial to parallel\")");
+            }
             if (type == "list")
             {
                 for (const char* k : {"diameter", "density", "angularVelocity"})
@@ -479,6 +489,13 @@ void Foam::demCoupling::checkInitialState()
         nOwn += owner[i] == me;
     }
     const label nAll = near ? decomposition_.total() : n;
+    if (near && returnReduce(nOwn, sumOp<label>()) > nAll)
+    {
+        FatalErrorInFunction
+            << "the processors hold " << returnReduce(nOwn, sumOp<label>())
+            << " initial particles in their cells of " << nAll << " drawn; "
+            << "please report this" << exit(FatalError);
+    }
     if (near)
     {
         // (one outside all cells but near several processors is seen by
