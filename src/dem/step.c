@@ -319,6 +319,25 @@ dem_status dem_world_step_drift(dem_world *w)
     return DEM_OK;
 }
 
+/* The drift of a later step of a run of split steps: the start checks of
+ * step_begin (state, time step, contact time: an O(n) pass) were done by the
+ * run's first dem_world_step_drift, as dem_world_step(w, n) does them once
+ * for its n steps; the full start when the list or the forces are not valid
+ * (then it is not the continuation of a completed step). */
+dem_status dem_world_step_drift_next(dem_world *w)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (w->drift_pending || !w->list_valid || !w->forces_valid || w->step == INT64_MAX)
+        return dem_world_step_drift(w);
+    dem_status st = step_drift(w, 1, &w->drift_d2max);
+    if (st) {
+        step_end_kick(w); /* as dem_world_step_drift on this error */
+        return st;
+    }
+    w->drift_pending = 1;
+    return DEM_OK;
+}
+
 dem_status dem_world_step_forces(dem_world *w)
 {
     if (!w) return DEM_ERR_ARG;

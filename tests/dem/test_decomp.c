@@ -123,11 +123,29 @@ static dem_world *make_a(int kind)
 
 static void bit_identity(int kind, const char *name, int64_t nsteps)
 {
-    dem_world *w1 = make_a(kind), *w2 = make_a(kind);
+    dem_world *w1 = make_a(kind), *w2 = make_a(kind), *w3 = make_a(kind);
     TRY(w1, dem_world_step(w1, nsteps));
     for (int64_t s = 0; s < nsteps; ++s) {
         TRY(w2, dem_world_step_drift(w2));
         TRY(w2, dem_world_step_forces(w2));
+        /* the checks once, as dem_world_step: dem_world_step_drift_next */
+        TRY(w3, s ? dem_world_step_drift_next(w3) : dem_world_step_drift(w3));
+        TRY(w3, dem_world_step_forces(w3));
+    }
+    {
+        dem_arrays a3, b3;
+        TRY(w2, dem_world_arrays(w2, &a3));
+        TRY(w3, dem_world_arrays(w3, &b3));
+        double d3 = a3.n_owned == b3.n_owned ? 0.0 : 1.0;
+        for (size_t i = 0; i < a3.n_owned && a3.n_owned == b3.n_owned; ++i)
+            for (int k = 0; k < 3; ++k) {
+                d3 = fmax(d3, fabs(a3.x[3 * i + k] - b3.x[3 * i + k]));
+                d3 = fmax(d3, fabs(a3.v[3 * i + k] - b3.v[3 * i + k]));
+                d3 = fmax(d3, fabs(a3.omega[3 * i + k] - b3.omega[3 * i + k]));
+            }
+        char nm3[200];
+        snprintf(nm3, sizeof nm3, "%s: step_drift_next vs step_drift: max |difference| of x, v, omega", name);
+        check_abs(nm3, d3, 0.0, 0.0);
     }
     dem_arrays a, b;
     TRY(w1, dem_world_arrays(w1, &a));
@@ -176,6 +194,7 @@ static void bit_identity(int kind, const char *name, int64_t nsteps)
     }
     dem_world_destroy(&w1);
     dem_world_destroy(&w2);
+    dem_world_destroy(&w3);
 }
 
 /*--- (b) two ranks in one process ------------------------------------------------------*/

@@ -230,6 +230,14 @@ dem_status dem_world_step(dem_world *w, int64_t nsteps);
  *  refused while a drift is pending. */
 dem_status dem_world_step_drift(dem_world *w);
 dem_status dem_world_step_forces(dem_world *w);
+/** Added: dem_world_step_drift for the second and later steps of a run of
+ *  split steps (the DEM sub-steps of one fluid step): without the start
+ *  checks (state, time step, contact time; an O(n) pass), which the run's
+ *  first dem_world_step_drift did, as dem_world_step(w, n) does them once
+ *  for its n steps.  Bit-identical to dem_world_step_drift.  When the list
+ *  or the forces are not valid, or a drift is pending, it is
+ *  dem_world_step_drift (full checks, or its DEM_ERR_STATE). */
+dem_status dem_world_step_drift_next(dem_world *w);
 /** Added: 1 if the next dem_world_step_forces would rebuild the neighbour
  *  list, else 0.  Meant between dem_world_step_drift and step_forces: the
  *  list is invalid (insertion, removal, unpack, clear_ghosts,

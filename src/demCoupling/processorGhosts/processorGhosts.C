@@ -36,6 +36,7 @@ Description
 #include "UOPstream.H"
 #include "Map.H"
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -121,12 +122,15 @@ Foam::processorGhosts::processorGhosts
     sendIds_(),
     sendIdx_(),
     sendReorder_(-1),
+    indexById_(),
     recvSet_(),
     recvCount_(),
     recvFirst_(),
     partnerSkin_(),
     sRef_(),
     S_(0),
+    dLast_(0),
+    renewAll_(true),
     dead_(false),
     ownStatus_(DEM_OK),
     failStep_(0),
@@ -359,14 +363,39 @@ bool Foam::processorGhosts::talk
     };
     if (!dead_)
     {
+        // the box of the owned centres and the largest radius (a cheap
+        // pass); the particle-by-particle stray check below only when the
+        // box reaches beyond the processor's box by stray/sqrt(3) on an
+        // axis (else no centre's distance to it can exceed the stray)
+        double lo0 = GREAT, lo1 = GREAT, lo2 = GREAT;
+        double hi0 = -GREAT, hi1 = -GREAT, hi2 = -GREAT;
         for (label i = 0; i < n; ++i)
+        {
+            const double* x = a.x + 3*i;
+            lo0 = x[0] < lo0 ? x[0] : lo0;
+            lo1 = x[1] < lo1 ? x[1] : lo1;
+            lo2 = x[2] < lo2 ? x[2] : lo2;
+            hi0 = x[0] > hi0 ? x[0] : hi0;
+            hi1 = x[1] > hi1 ? x[1] : hi1;
+            hi2 = x[2] > hi2 ? x[2] : hi2;
+            rMax = a.radius[i] > rMax ? a.radius[i] : rMax;
+        }
+        hdr[1] = lo0; hdr[2] = lo1; hdr[3] = lo2;
+        hdr[4] = hi0; hdr[5] = hi1; hdr[6] = hi2;
+        const scalar s3 = stray_/Foam::sqrt(3.0);
+        bool inside = true;
+        for (direction k = 0; k < 3 && n; ++k)
+        {
+            inside = inside
+             && hdr[1 + k] >= ownBox_.min()[k] - s3
+             && hdr[4 + k] <= ownBox_.max()[k] + s3;
+        }
+        for (label i = 0; i < n && !inside; ++i)
         {
             scalar g2 = 0;
             for (direction k = 0; k < 3; ++k)
             {
                 const scalar x = a.x[3*i + k];
-                hdr[1 + k] = min(hdr[1 + k], x);
-                hdr[4 + k] = max(hdr[4 + k], x);
                 g2 += sqr
                 (
                     axisGap
@@ -376,7 +405,6 @@ bool Foam::processorGhosts::talk
                     )
                 );
             }
-            rMax = max(rMax, a.radius[i]);
             if (g2 > sqr(stray_) && nearOther(i))
             {
                 fail
@@ -427,18 +455,20 @@ bool Foam::processorGhosts::talk
     auto mapIndices = [&]()
     {
         if (reorders == sendReorder_) return;
-        Map<label> index(2*n + 1);
+        // id -> storage index (a table by id: no allocation per particle)
         for (label i = 0; i < n; ++i)
         {
-            index.insert(label(a.id[i]), i);
+            idSlot(indexById_, a.id[i]) = i;
         }
         forAll(sendIds_, k)
         {
             sendIdx_[k].setSize(sendIds_[k].size());
             forAll(sendIds_[k], j)
             {
-                const auto it = index.cfind(label(sendIds_[k][j]));
-                if (!it.found())
+                const int64_t id = sendIds_[k][j];
+                const label i =
+                    id >= 0 && id < indexById_.size() ? indexById_[id] : -1;
+                if (i < 0 || i >= n || a.id[i] != id)
                 {
                     FatalErrorInFunction
                         << "ghost particle " << label(sendIds_[k][j])
@@ -446,7 +476,7 @@ bool Foam::processorGhosts::talk
                         << "longer owned here between renewals; please "
                         << "report this" << exit(FatalError);
                 }
-                sendIdx_[k][j] = *it;
+                sendIdx_[k][j] = i;
             }
         }
         sendReorder_ = reorders;
@@ -464,7 +494,13 @@ bool Foam::processorGhosts::talk
         {
             thr = partnerSkin_[k];
         }
-        ask[k] = start || stale || S_ - sRef_[k] + d > 0.25*thr;
+        const bool far = S_ - sRef_[k] + d > 0.25*thr;
+        ask[k] = (start && renewAll_) || stale || far;
+        if (!dead_)
+        {
+            counts_.askStale += stale;
+            counts_.askSkin += !stale && far;
+        }
         int flags = (ask[k] ? askRenew : 0) | (dead_ ? isDead : 0);
         const bool states = !ask[k] && !dead_;
         if (states) flags |= hasStates;
@@ -503,7 +539,12 @@ bool Foam::processorGhosts::talk
     DynamicList<char> buf;
     for (label k = 0; k < np; ++k)
     {
+        const auto w0 = std::chrono::steady_clock::now();
         receiveBytes(partners_[k], tagHeader, buf);
+        counts_.wait += std::chrono::duration<double>
+        (
+            std::chrono::steady_clock::now() - w0
+        ).count();
         const size_t nd = size_t(buf.size())/sizeof(double);
         const double* in = reinterpret_cast<const double*>(buf.cdata());
         if (nd < size_t(headerSize))
@@ -570,9 +611,8 @@ bool Foam::processorGhosts::talk
             const FixedList<double, headerSize>& b = theirs[k];
             const scalar rPair = max(rMax, b[7]);
             std::vector<char>& o = sets[k];
-            o.assign(2*sizeof(int64_t), 0);
             sendIds_[k].clear();
-            int64_t count = 0;
+            DynamicList<label> chosen;
             for (label i = 0; i < n; ++i)
             {
                 const scalar reach = a.radius[i] + rPair + skin0_;
@@ -590,17 +630,23 @@ bool Foam::processorGhosts::talk
                 }
                 if (d2 >= sqr(reach)) continue;
                 sendIds_[k].append(a.id[i]);
-                o.resize(o.size() + gs);
+                chosen.append(i);
+            }
+            // one allocation for the set: count header, then the ghosts
+            const int64_t count = chosen.size();
+            o.assign(2*sizeof(int64_t) + size_t(count)*gs, 0);
+            forAll(chosen, j)
+            {
                 size_t sz = gs;
                 world_.check
                 (
                     dem_world_pack_ghost
                     (
-                        world_, size_t(i), o.data() + o.size() - gs, &sz
+                        world_, size_t(chosen[j]),
+                        o.data() + 2*sizeof(int64_t) + size_t(j)*gs, &sz
                     ),
                     "dem_world_pack_ghost"
                 );
-                ++count;
             }
             const int64_t pre[2] = {int64_t(gs), count};
             std::memcpy(o.data(), pre, sizeof pre);
@@ -610,7 +656,12 @@ bool Foam::processorGhosts::talk
         for (label k = 0; k < np; ++k)
         {
             if (!renew[k]) continue;
+            const auto w0 = std::chrono::steady_clock::now();
             receiveBytes(partners_[k], tagSet, buf);
+            counts_.wait += std::chrono::duration<double>
+            (
+                std::chrono::steady_clock::now() - w0
+            ).count();
             recvSet_[k].assign(buf.cdata(), buf.cdata() + buf.size());
             int64_t pre[2] = {0, 0};
             if (recvSet_[k].size() >= sizeof pre)
@@ -635,7 +686,7 @@ bool Foam::processorGhosts::talk
 
     // the ghosts here: all sets unpacked again when any pair renewed (the
     // others then get this step's states), else the states set in place
-    const bool unpack = anyRenew || (start && !dead_);
+    const bool unpack = anyRenew || (start && renewAll_ && !dead_);
     if (unpack)
     {
         world_.check(dem_world_clear_ghosts(world_), "dem_world_clear_ghosts");
@@ -685,10 +736,11 @@ bool Foam::processorGhosts::talk
 
     // the displacement bounds (processorGhosts.C, top)
     const bool rebuilt = !dead_ && (stale || unpack);
-    if (start)
+    if (start && renewAll_)
     {
         S_ = 0;
         sRef_ = 0;
+        renewAll_ = false;
     }
     else if (rebuilt)
     {
@@ -697,6 +749,21 @@ bool Foam::processorGhosts::talk
         {
             if (renew[k]) sRef_[k] = S_;
         }
+    }
+    // the displacement since the last build (the next call's start)
+    dLast_ = rebuilt ? 0 : d;
+    if (start)
+    {
+        ++counts_.calls;
+        for (const char b : renew) counts_.startRenewals += b;
+    }
+    else
+    {
+        ++counts_.steps;
+        counts_.rebuilds += rebuilt;
+        for (const char b : renew) counts_.renewals += b;
+        counts_.ghosts += double(world_.arrays().n_ghost);
+        counts_.owned += double(n);
     }
     if (partnerDead && !dead_)
     {
@@ -728,15 +795,19 @@ dem_status Foam::processorGhosts::step(const label m)
     };
     // ghosts before the first drift too: it may rebuild the neighbour list
     // (after a migration), which must see them to keep the contact history
-    // of pairs across processors
-    talk(true, false, 0);
+    // of pairs across processors.  A pair renews here only if either side's
+    // owned set changed since the last step (migration, insertion, removal,
+    // a restored checkpoint: the list is invalid) or its quarter skin is
+    // used up; on the first call every pair renews
+    talk(true, !dead_ && dem_world_list_stale(world_), dLast_);
     for (label s = 0; s < m; ++s)
     {
         ++stepCount_;
         bool pending = false;
         if (!dead_)
         {
-            const dem_status st = world_.tryDrift();
+            // the start checks once per call, as dem_world_step(w, m)
+            const dem_status st = world_.tryDrift(s == 0);
             if (st != DEM_OK) fail(st, why(st));
             else pending = true;
         }
@@ -756,6 +827,28 @@ dem_status Foam::processorGhosts::step(const label m)
         world_.captureContacts();
     }
     return ownStatus_;
+}
+
+
+std::string Foam::processorGhosts::summary() const
+{
+    const counts& c = counts_;
+    const double s = max(c.steps, label(1));
+    char line[512];
+    std::snprintf
+    (
+        line, sizeof line,
+        "ghost exchange: %ld DEM steps in %ld calls, partners %ld; pair "
+        "renewals at the calls' start %ld; per DEM step: pair renewals "
+        "%.4f (this side asked, start included: stale list %.4f, quarter "
+        "skin %.4f), list rebuilds %.4f, owned %.0f, ghosts %.0f (%.1f %%); "
+        "blocked in receives %.3f s",
+        long(c.steps), long(c.calls), long(partners_.size()),
+        long(c.startRenewals),
+        c.renewals/s, c.askStale/s, c.askSkin/s, c.rebuilds/s,
+        c.owned/s, c.ghosts/s, 100*c.ghosts/max(c.owned, 1.0), c.wait
+    );
+    return line;
 }
 
 
@@ -780,6 +873,11 @@ dem_status Foam::processorGhosts::agree(std::string& failure)
         failure = "DEM core: " + why[p] + " (processor "
           + std::to_string(p) + ")";
         st = ownStatus_ != DEM_OK ? ownStatus_ : DEM_ERR_STATE;
+    }
+    if (st != DEM_OK)
+    {
+        // the fluid step is undone from its checkpoint: every pair renews
+        renewAll_ = true;
     }
     dead_ = false;
     ownStatus_ = DEM_OK;
