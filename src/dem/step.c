@@ -357,6 +357,25 @@ int dem_world_list_stale(const dem_world *w)
     return list_needs_build(w, w->drift_d2max, max_wall_speed(w));
 }
 
+double dem_world_ghost_displacement(const dem_world *w)
+{
+    if (!w || !w->list_valid) return 0.0;
+    double d2max = 0.0;
+    for (size_t i = w->n; i < w->n + w->ng && i < w->nrows; ++i) {
+        const double *x = w->x + 3 * i;
+        const float *x0 = w->x0 + 3 * i;
+        const double e0 = x[0] - x0[0], e1 = x[1] - x0[1], e2 = x[2] - x0[2];
+        const double d2 = e0 * e0 + e1 * e1 + e2 * e2;
+        d2max = d2 > d2max ? d2 : d2max;
+    }
+    return sqrt(d2max);
+}
+
+int dem_world_list_invalid(const dem_world *w)
+{
+    return w ? !w->list_valid : 0;
+}
+
 double dem_world_drift_displacement(const dem_world *w)
 {
     if (!w || !w->drift_pending) return 0.0;

@@ -9,24 +9,29 @@ Description
     to which partner, their packing, and the DEM steps of a decomposed run
     with the ghosts refreshed between the drift and the force evaluation.
 
-    Why a quarter skin per pair and no propagation: the ghost set that q
-    sends p at time T holds every q particle within r_i + r_max + skin of
-    the box of p's centres at T.  While q's and p's particles each move
-    less than skin/4 from T (each side checks its own and asks for a
-    renewal otherwise), no contact of a q particle that is not a ghost
-    on p can start (skin/2 < skin).  p's neighbour list, built at any time
-    B >= T (when another pair of p renews, or its own list goes stale),
-    holds the pairs within r_i + r_j + skin at B: p's own particles move
-    less than skin/2 from B (the core's criterion), q's less than
-    skin/4 + skin/4 from B (both are within skin/4 of where they were at
-    T), so no pair is missed before the next build.  Hence one pair's
-    renewal forces no other pair's, and a rebuild does not propagate.
-    Displacements since T are bounded without keeping positions: S_ sums
-    the largest owned displacement of every finished list-build interval
-    (the core's drift displacement at the rebuild, plus the rounding of its
-    single-precision build positions), so S_ - S_(T) + the current drift
-    displacement bounds every owned particle's displacement since T (the
-    triangle inequality, interval by interval).
+    Why half a skin per pair, and no propagation (docs/parallel.md,
+    "Neighbour-only communication"):
+    - Ghost sets.  The set q sends p at time T holds every q particle
+      within r_i + r_max + skin of the box of p's centres at T.  While q's
+      and p's particles each move at most skin/2 from T (each side checks
+      its own and asks for a renewal otherwise), no q particle outside the
+      set can touch a p particle.  A renewal is also asked when a side's
+      owned set changed (migration, insertion, removal: its list is
+      invalid), and on the first call.
+    - Lists.  p's neighbour list, built at B, holds the pairs within
+      r_i + r_j + skin at B.  It stays valid while p's particles move at
+      most skin/2 from B (the core's criterion) and so do the ghosts: p
+      measures their displacement since B from the states it receives
+      (dem_world_ghost_displacement) and rebuilds, alone (no renewal, no
+      message), before it exceeds skin/2.  So one pair's renewal forces no
+      other pair's, and a rebuild does not propagate.
+    - Displacements since a renewal are bounded without keeping
+      positions: S_ sums the largest owned displacement of every finished
+      list-build interval (the core's drift displacement at the rebuild,
+      plus the rounding of its single-precision build positions); since a
+      renewal at T, where the list was rebuilt, every owned particle moved
+      at most S_ - S_(T) + d (d the drift displacement since the last
+      build; the triangle inequality, interval by interval).
 
 \*---------------------------------------------------------------------------*/
 
@@ -449,6 +454,13 @@ bool Foam::processorGhosts::talk
     }
     hdr[7] = rMax;
     hdr[8] = skin;
+    // the owned set or the ghosts changed since the last build (not just
+    // moved): the ghost sets this side sent are out of date
+    const bool changed = stale && dem_world_list_invalid(world_);
+    // the rounding of the core's single-precision build positions, per
+    // displacement measured against them
+    const scalar rounding =
+        1.2e-7*max(mag(ownBox_.min()), mag(ownBox_.max()));
 
     // the storage indices of the ids sent (the core re-sorts at builds)
     const int64_t reorders = dem_world_reorder_count(world_);
@@ -494,12 +506,12 @@ bool Foam::processorGhosts::talk
         {
             thr = partnerSkin_[k];
         }
-        const bool far = S_ - sRef_[k] + d > 0.25*thr;
-        ask[k] = (start && renewAll_) || stale || far;
+        const bool far = S_ - sRef_[k] + d > 0.5*thr;
+        ask[k] = (start && renewAll_) || changed || far;
         if (!dead_)
         {
-            counts_.askStale += stale;
-            counts_.askSkin += !stale && far;
+            counts_.askStale += changed;
+            counts_.askSkin += !changed && far;
         }
         int flags = (ask[k] ? askRenew : 0) | (dead_ ? isDead : 0);
         const bool states = !ask[k] && !dead_;
@@ -732,23 +744,40 @@ bool Foam::processorGhosts::talk
             "dem_world_set_ghost_states"
         );
     }
+    // the ghosts here may have moved more than half a skin since this
+    // side's last list build (the core's criterion for the owned ones):
+    // rebuild it (no renewal needed)
+    scalar thrAll = skin;
+    for (const scalar sk : partnerSkin_)
+    {
+        if (sk > 0 && (thrAll <= 0 || sk < thrAll)) thrAll = sk;
+    }
+    const bool partnerFar =
+        !dead_ && !unpack
+     && dem_world_ghost_displacement(world_) + rounding > 0.5*thrAll;
+    if (partnerFar && !stale && !unpack && !dead_)
+    {
+        world_.check
+        (
+            dem_world_invalidate_list(world_), "dem_world_invalidate_list"
+        );
+    }
     UPstream::waitRequests(req0);
 
     // the displacement bounds (processorGhosts.C, top)
-    const bool rebuilt = !dead_ && (stale || unpack);
-    if (start && renewAll_)
+    const bool rebuilt = !dead_ && (stale || unpack || partnerFar);
+    if (start)
     {
-        S_ = 0;
-        sRef_ = 0;
         renewAll_ = false;
     }
-    else if (rebuilt)
+    if (rebuilt)
     {
-        S_ += d + 1.2e-7*max(mag(ownBox_.min()), mag(ownBox_.max()));
+        S_ += d + rounding;
         for (label k = 0; k < np; ++k)
         {
             if (renew[k]) sRef_[k] = S_;
         }
+        counts_.partnerRebuilds += partnerFar && !stale && !unpack;
     }
     // the displacement since the last build (the next call's start)
     dLast_ = rebuilt ? 0 : d;
@@ -797,7 +826,7 @@ dem_status Foam::processorGhosts::step(const label m)
     // (after a migration), which must see them to keep the contact history
     // of pairs across processors.  A pair renews here only if either side's
     // owned set changed since the last step (migration, insertion, removal,
-    // a restored checkpoint: the list is invalid) or its quarter skin is
+    // a restored checkpoint: the list is invalid) or its half skin is
     // used up; on the first call every pair renews
     talk(true, !dead_ && dem_world_list_stale(world_), dLast_);
     for (label s = 0; s < m; ++s)
@@ -840,12 +869,14 @@ std::string Foam::processorGhosts::summary() const
         line, sizeof line,
         "ghost exchange: %ld DEM steps in %ld calls, partners %ld; pair "
         "renewals at the calls' start %ld; per DEM step: pair renewals "
-        "%.4f (this side asked, start included: stale list %.4f, quarter "
-        "skin %.4f), list rebuilds %.4f, owned %.0f, ghosts %.0f (%.1f %%); "
-        "blocked in receives %.3f s",
+        "%.4f (this side asked, start included: owned set changed %.4f, "
+        "half skin %.4f), list rebuilds %.4f (for a partner's ghosts "
+        "%.4f), owned %.0f, ghosts %.0f (%.1f %%); blocked in receives "
+        "%.3f s",
         long(c.steps), long(c.calls), long(partners_.size()),
         long(c.startRenewals),
         c.renewals/s, c.askStale/s, c.askSkin/s, c.rebuilds/s,
+        c.partnerRebuilds/s,
         c.owned/s, c.ghosts/s, 100*c.ghosts/max(c.owned, 1.0), c.wait
     );
     return line;
