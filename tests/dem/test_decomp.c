@@ -800,7 +800,8 @@ static void ghost_order_and_list_control(void)
         TRY(w, dem_world_set_ghost_states(w, 0, NG, xvw));
         if (!stale) {
             quiet_steps++;
-            quiet_bad += dem_world_list_stale(w) != 0 || dem_world_reorder_count(w) != ro;
+            quiet_bad += dem_world_list_stale(w) != 0 || dem_world_reorder_count(w) != ro ||
+                         dem_world_list_invalid(w) != 0;
         }
         TRY(w, dem_world_step_forces(w));
     }
@@ -819,6 +820,9 @@ static void ghost_order_and_list_control(void)
     void *pb = malloc(sz);
     TRY(w, dem_world_pack_particle(w, 0, pb, &sz));
     TRY(w, dem_world_remove_particle(w, 0, -1));
+    check_abs("dem_world_list_invalid after remove_particle = 1", dem_world_list_invalid(w), 1, 0);
+    check_abs("dem_world_list_invalid(NULL) = 0", dem_world_list_invalid(NULL), 0, 0);
+    check_abs("dem_world_ghost_displacement with an invalid list = 0 [m]", dem_world_ghost_displacement(w), 0, 0);
     check_abs("remove_particle(-1): ghost order kept (differences)", ghost_order_diff(w, gid, NG), 0, 0);
     TRY(w, dem_world_unpack_particle(w, pb, sz, 0));
     free(pb);
@@ -829,7 +833,17 @@ static void ghost_order_and_list_control(void)
     /* set_ghost_states: the values land at their positions; errors */
     TRY(w, dem_world_arrays(w, &A));
     double one[9] = {0.0085, 0.0, 0.019, 0.01, 0.02, 0.03, 1, 2, 3};
+    check_range("dem_world_ghost_displacement right after a build: float rounding only [m]",
+                dem_world_ghost_displacement(w), 0, 1e-8);
+    double dmove = 0;
+    for (int k = 0; k < 3; ++k) {
+        const double e = one[k] - A.x[3 * (A.n_owned + 3) + (size_t)k];
+        dmove += e * e;
+    }
+    dmove = sqrt(dmove);
     TRY(w, dem_world_set_ghost_states(w, 3, 1, one));
+    check_abs("dem_world_ghost_displacement after ghost 3 was moved = its move [m]",
+              dem_world_ghost_displacement(w), dmove, 1e-8);
     TRY(w, dem_world_arrays(w, &A));
     size_t i3 = A.n_owned + 3;
     double dset = 0;
