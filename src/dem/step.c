@@ -319,6 +319,25 @@ dem_status dem_world_step_drift(dem_world *w)
     return DEM_OK;
 }
 
+/* The drift of a later step of a run of split steps: the start checks of
+ * step_begin (state, time step, contact time: an O(n) pass) were done by the
+ * run's first dem_world_step_drift, as dem_world_step(w, n) does them once
+ * for its n steps; the full start when the list or the forces are not valid
+ * (then it is not the continuation of a completed step). */
+dem_status dem_world_step_drift_next(dem_world *w)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (w->drift_pending || !w->list_valid || !w->forces_valid || w->step == INT64_MAX)
+        return dem_world_step_drift(w);
+    dem_status st = step_drift(w, 1, &w->drift_d2max);
+    if (st) {
+        step_end_kick(w); /* as dem_world_step_drift on this error */
+        return st;
+    }
+    w->drift_pending = 1;
+    return DEM_OK;
+}
+
 dem_status dem_world_step_forces(dem_world *w)
 {
     if (!w) return DEM_ERR_ARG;
@@ -336,6 +355,25 @@ int dem_world_list_stale(const dem_world *w)
     if (!w) return 0;
     if (!w->drift_pending) return !w->list_valid;
     return list_needs_build(w, w->drift_d2max, max_wall_speed(w));
+}
+
+double dem_world_ghost_displacement(const dem_world *w)
+{
+    if (!w || !w->list_valid) return 0.0;
+    double d2max = 0.0;
+    for (size_t i = w->n; i < w->n + w->ng && i < w->nrows; ++i) {
+        const double *x = w->x + 3 * i;
+        const float *x0 = w->x0 + 3 * i;
+        const double e0 = x[0] - x0[0], e1 = x[1] - x0[1], e2 = x[2] - x0[2];
+        const double d2 = e0 * e0 + e1 * e1 + e2 * e2;
+        d2max = d2 > d2max ? d2 : d2max;
+    }
+    return sqrt(d2max);
+}
+
+int dem_world_list_invalid(const dem_world *w)
+{
+    return w ? !w->list_valid : 0;
 }
 
 double dem_world_drift_displacement(const dem_world *w)

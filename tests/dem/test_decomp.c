@@ -123,11 +123,29 @@ static dem_world *make_a(int kind)
 
 static void bit_identity(int kind, const char *name, int64_t nsteps)
 {
-    dem_world *w1 = make_a(kind), *w2 = make_a(kind);
+    dem_world *w1 = make_a(kind), *w2 = make_a(kind), *w3 = make_a(kind);
     TRY(w1, dem_world_step(w1, nsteps));
     for (int64_t s = 0; s < nsteps; ++s) {
         TRY(w2, dem_world_step_drift(w2));
         TRY(w2, dem_world_step_forces(w2));
+        /* the checks once, as dem_world_step: dem_world_step_drift_next */
+        TRY(w3, s ? dem_world_step_drift_next(w3) : dem_world_step_drift(w3));
+        TRY(w3, dem_world_step_forces(w3));
+    }
+    {
+        dem_arrays a3, b3;
+        TRY(w2, dem_world_arrays(w2, &a3));
+        TRY(w3, dem_world_arrays(w3, &b3));
+        double d3 = a3.n_owned == b3.n_owned ? 0.0 : 1.0;
+        for (size_t i = 0; i < a3.n_owned && a3.n_owned == b3.n_owned; ++i)
+            for (int k = 0; k < 3; ++k) {
+                d3 = fmax(d3, fabs(a3.x[3 * i + k] - b3.x[3 * i + k]));
+                d3 = fmax(d3, fabs(a3.v[3 * i + k] - b3.v[3 * i + k]));
+                d3 = fmax(d3, fabs(a3.omega[3 * i + k] - b3.omega[3 * i + k]));
+            }
+        char nm3[200];
+        snprintf(nm3, sizeof nm3, "%s: step_drift_next vs step_drift: max |difference| of x, v, omega", name);
+        check_abs(nm3, d3, 0.0, 0.0);
     }
     dem_arrays a, b;
     TRY(w1, dem_world_arrays(w1, &a));
@@ -176,6 +194,7 @@ static void bit_identity(int kind, const char *name, int64_t nsteps)
     }
     dem_world_destroy(&w1);
     dem_world_destroy(&w2);
+    dem_world_destroy(&w3);
 }
 
 /*--- (b) two ranks in one process ------------------------------------------------------*/
@@ -781,7 +800,8 @@ static void ghost_order_and_list_control(void)
         TRY(w, dem_world_set_ghost_states(w, 0, NG, xvw));
         if (!stale) {
             quiet_steps++;
-            quiet_bad += dem_world_list_stale(w) != 0 || dem_world_reorder_count(w) != ro;
+            quiet_bad += dem_world_list_stale(w) != 0 || dem_world_reorder_count(w) != ro ||
+                         dem_world_list_invalid(w) != 0;
         }
         TRY(w, dem_world_step_forces(w));
     }
@@ -800,6 +820,9 @@ static void ghost_order_and_list_control(void)
     void *pb = malloc(sz);
     TRY(w, dem_world_pack_particle(w, 0, pb, &sz));
     TRY(w, dem_world_remove_particle(w, 0, -1));
+    check_abs("dem_world_list_invalid after remove_particle = 1", dem_world_list_invalid(w), 1, 0);
+    check_abs("dem_world_list_invalid(NULL) = 0", dem_world_list_invalid(NULL), 0, 0);
+    check_abs("dem_world_ghost_displacement with an invalid list = 0 [m]", dem_world_ghost_displacement(w), 0, 0);
     check_abs("remove_particle(-1): ghost order kept (differences)", ghost_order_diff(w, gid, NG), 0, 0);
     TRY(w, dem_world_unpack_particle(w, pb, sz, 0));
     free(pb);
@@ -810,7 +833,17 @@ static void ghost_order_and_list_control(void)
     /* set_ghost_states: the values land at their positions; errors */
     TRY(w, dem_world_arrays(w, &A));
     double one[9] = {0.0085, 0.0, 0.019, 0.01, 0.02, 0.03, 1, 2, 3};
+    check_range("dem_world_ghost_displacement right after a build: float rounding only [m]",
+                dem_world_ghost_displacement(w), 0, 1e-8);
+    double dmove = 0;
+    for (int k = 0; k < 3; ++k) {
+        const double e = one[k] - A.x[3 * (A.n_owned + 3) + (size_t)k];
+        dmove += e * e;
+    }
+    dmove = sqrt(dmove);
     TRY(w, dem_world_set_ghost_states(w, 3, 1, one));
+    check_abs("dem_world_ghost_displacement after ghost 3 was moved = its move [m]",
+              dem_world_ghost_displacement(w), dmove, 1e-8);
     TRY(w, dem_world_arrays(w, &A));
     size_t i3 = A.n_owned + 3;
     double dset = 0;

@@ -230,6 +230,14 @@ dem_status dem_world_step(dem_world *w, int64_t nsteps);
  *  refused while a drift is pending. */
 dem_status dem_world_step_drift(dem_world *w);
 dem_status dem_world_step_forces(dem_world *w);
+/** Added: dem_world_step_drift for the second and later steps of a run of
+ *  split steps (the DEM sub-steps of one fluid step): without the start
+ *  checks (state, time step, contact time; an O(n) pass), which the run's
+ *  first dem_world_step_drift did, as dem_world_step(w, n) does them once
+ *  for its n steps.  Bit-identical to dem_world_step_drift.  When the list
+ *  or the forces are not valid, or a drift is pending, it is
+ *  dem_world_step_drift (full checks, or its DEM_ERR_STATE). */
+dem_status dem_world_step_drift_next(dem_world *w);
 /** Added: 1 if the next dem_world_step_forces would rebuild the neighbour
  *  list, else 0.  Meant between dem_world_step_drift and step_forces: the
  *  list is invalid (insertion, removal, unpack, clear_ghosts,
@@ -239,6 +247,17 @@ dem_status dem_world_step_forces(dem_world *w);
  *  Without a pending drift: 1 if the list is invalid, else 0.  0 for NULL.
  *  Decomposed runs: see the Verlet scheme under decomposition support. */
 int        dem_world_list_stale(const dem_world *w);
+/** Added: 1 if the neighbour list is invalid whatever the displacements
+ *  (insertion, removal, unpack, clear_ghosts, dem_world_invalidate_list,
+ *  ... since the build: the owned set or the ghosts changed), else 0; 0 for
+ *  NULL.  A decomposed run renews its ghost sets then (processorGhosts). */
+int        dem_world_list_invalid(const dem_world *w);
+/** Added: the largest displacement of the ghosts since the last neighbour-
+ *  list build [m] (their positions as set by dem_world_set_ghost_states
+ *  against those at the build); 0 when the list is invalid, without ghosts
+ *  or for NULL.  A decomposed run rebuilds its list when it may exceed half
+ *  the skin, as the core does for the owned particles (processorGhosts). */
+double     dem_world_ghost_displacement(const dem_world *w);
 /** Added: the largest displacement of the owned particles since the last
  *  neighbour-list build [m], as measured by the pending drift (the d of
  *  dem_world_list_stale; particles inserted by that drift's inlets are not
@@ -456,7 +475,9 @@ int dem_world_setup_diff(const dem_world *a, const dem_world *b, char *what, siz
  * up by id: owned particles are re-sorted at list builds); then step_forces.
  * (The simplest sound scheme, with a global OR per step.  demFoam instead lets
  * each pair of neighbouring ranks renew its ghost sets when either side's
- * particles moved more than skin/4 since the pair's last renewal, bounded with
+ * particles moved more than skin/2 since the pair's last renewal, and each
+ * rank rebuild its list when its own or a partner's particles may have moved
+ * more than skin/2 since its build, bounded with
  * dem_world_drift_displacement: no collective per step; src/demCoupling/
  * processorGhosts/processorGhosts.C, docs/parallel.md.)
  * Ranks must use the same dt and skin; an owned particle may stray outside

@@ -26,6 +26,12 @@ void Foam::demCoupling::report(const bool full) const
 void Foam::demCoupling::write() const
 {
     report(true);
+    if (Pstream::parRun())
+    {
+        // this processor's ghost exchange so far (docs/parallel.md,
+        // "Neighbour-only communication")
+        Pout<< ghosts_.summary().c_str() << endl;
+    }
     diag_.writeCloud();
 
     // DEM state for restarts

@@ -92,9 +92,16 @@ dem_status Foam::demWorld::tryStep(const int64_t nsteps)
 }
 
 
-dem_status Foam::demWorld::tryDrift()
+dem_status Foam::demWorld::tryDrift(const bool first)
 {
-    return withoutTraps([&]{ return dem_world_step_drift(w_); });
+    return withoutTraps
+    (
+        [&]
+        {
+            return first
+              ? dem_world_step_drift(w_) : dem_world_step_drift_next(w_);
+        }
+    );
 }
 
 

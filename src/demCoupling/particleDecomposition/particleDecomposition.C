@@ -438,8 +438,22 @@ void Foam::particleDecomposition::migrate
     exitPatch.setSize(leaving.size());
     exitPatch = -1;
 
-    // the ghosts go first: a ghost may become owned here
-    world_.check(dem_world_clear_ghosts(world_), "dem_world_clear_ghosts");
+    // the ghosts go first: a ghost may become owned here, and a leaving
+    // particle is packed without its contacts with ghosts.  Only when a
+    // particle leaves or arrives (below): without either, the ghosts and
+    // the neighbour list stay, and the next DEM sub-steps need not renew
+    // the ghost sets (processorGhosts::step)
+    bool cleared = false;
+    auto clearGhosts = [&]()
+    {
+        if (cleared) return;
+        world_.check(dem_world_clear_ghosts(world_), "dem_world_clear_ghosts");
+        cleared = true;
+    };
+    if (leaving.size())
+    {
+        clearGhosts();
+    }
 
     // pack the leaving particles with their history
     const dem_arrays a = world_.arrays();
@@ -602,6 +616,7 @@ void Foam::particleDecomposition::migrate
         }
         for (label t = 0; t < nTake; ++t)
         {
+            clearGhosts();
             const size_t j = size_t(idx[t]);
             world_.check
             (

@@ -9,24 +9,29 @@ Description
     to which partner, their packing, and the DEM steps of a decomposed run
     with the ghosts refreshed between the drift and the force evaluation.
 
-    Why a quarter skin per pair and no propagation: the ghost set that q
-    sends p at time T holds every q particle within r_i + r_max + skin of
-    the box of p's centres at T.  While q's and p's particles each move
-    less than skin/4 from T (each side checks its own and asks for a
-    renewal otherwise), no contact of a q particle that is not a ghost
-    on p can start (skin/2 < skin).  p's neighbour list, built at any time
-    B >= T (when another pair of p renews, or its own list goes stale),
-    holds the pairs within r_i + r_j + skin at B: p's own particles move
-    less than skin/2 from B (the core's criterion), q's less than
-    skin/4 + skin/4 from B (both are within skin/4 of where they were at
-    T), so no pair is missed before the next build.  Hence one pair's
-    renewal forces no other pair's, and a rebuild does not propagate.
-    Displacements since T are bounded without keeping positions: S_ sums
-    the largest owned displacement of every finished list-build interval
-    (the core's drift displacement at the rebuild, plus the rounding of its
-    single-precision build positions), so S_ - S_(T) + the current drift
-    displacement bounds every owned particle's displacement since T (the
-    triangle inequality, interval by interval).
+    Why half a skin per pair, and no propagation (docs/parallel.md,
+    "Neighbour-only communication"):
+    - Ghost sets.  The set q sends p at time T holds every q particle
+      within r_i + r_max + skin of the box of p's centres at T.  While q's
+      and p's particles each move at most skin/2 from T (each side checks
+      its own and asks for a renewal otherwise), no q particle outside the
+      set can touch a p particle.  A renewal is also asked when a side's
+      owned set changed (migration, insertion, removal: its list is
+      invalid), and on the first call.
+    - Lists.  p's neighbour list, built at B, holds the pairs within
+      r_i + r_j + skin at B.  It stays valid while p's particles move at
+      most skin/2 from B (the core's criterion) and so do the ghosts: p
+      measures their displacement since B from the states it receives
+      (dem_world_ghost_displacement) and rebuilds, alone (no renewal, no
+      message), before it exceeds skin/2.  So one pair's renewal forces no
+      other pair's, and a rebuild does not propagate.
+    - Displacements since a renewal are bounded without keeping
+      positions: S_ sums the largest owned displacement of every finished
+      list-build interval (the core's drift displacement at the rebuild,
+      plus the rounding of its single-precision build positions); since a
+      renewal at T, where the list was rebuilt, every owned particle moved
+      at most S_ - S_(T) + d (d the drift displacement since the last
+      build; the triangle inequality, interval by interval).
 
 \*---------------------------------------------------------------------------*/
 
@@ -36,6 +41,7 @@ Description
 #include "UOPstream.H"
 #include "Map.H"
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -121,12 +127,15 @@ Foam::processorGhosts::processorGhosts
     sendIds_(),
     sendIdx_(),
     sendReorder_(-1),
+    indexById_(),
     recvSet_(),
     recvCount_(),
     recvFirst_(),
     partnerSkin_(),
     sRef_(),
     S_(0),
+    dLast_(0),
+    renewAll_(true),
     dead_(false),
     ownStatus_(DEM_OK),
     failStep_(0),
@@ -359,14 +368,39 @@ bool Foam::processorGhosts::talk
     };
     if (!dead_)
     {
+        // the box of the owned centres and the largest radius (a cheap
+        // pass); the particle-by-particle stray check below only when the
+        // box reaches beyond the processor's box by stray/sqrt(3) on an
+        // axis (else no centre's distance to it can exceed the stray)
+        double lo0 = GREAT, lo1 = GREAT, lo2 = GREAT;
+        double hi0 = -GREAT, hi1 = -GREAT, hi2 = -GREAT;
         for (label i = 0; i < n; ++i)
+        {
+            const double* x = a.x + 3*i;
+            lo0 = x[0] < lo0 ? x[0] : lo0;
+            lo1 = x[1] < lo1 ? x[1] : lo1;
+            lo2 = x[2] < lo2 ? x[2] : lo2;
+            hi0 = x[0] > hi0 ? x[0] : hi0;
+            hi1 = x[1] > hi1 ? x[1] : hi1;
+            hi2 = x[2] > hi2 ? x[2] : hi2;
+            rMax = a.radius[i] > rMax ? a.radius[i] : rMax;
+        }
+        hdr[1] = lo0; hdr[2] = lo1; hdr[3] = lo2;
+        hdr[4] = hi0; hdr[5] = hi1; hdr[6] = hi2;
+        const scalar s3 = stray_/Foam::sqrt(3.0);
+        bool inside = true;
+        for (direction k = 0; k < 3 && n; ++k)
+        {
+            inside = inside
+             && hdr[1 + k] >= ownBox_.min()[k] - s3
+             && hdr[4 + k] <= ownBox_.max()[k] + s3;
+        }
+        for (label i = 0; i < n && !inside; ++i)
         {
             scalar g2 = 0;
             for (direction k = 0; k < 3; ++k)
             {
                 const scalar x = a.x[3*i + k];
-                hdr[1 + k] = min(hdr[1 + k], x);
-                hdr[4 + k] = max(hdr[4 + k], x);
                 g2 += sqr
                 (
                     axisGap
@@ -376,7 +410,6 @@ bool Foam::processorGhosts::talk
                     )
                 );
             }
-            rMax = max(rMax, a.radius[i]);
             if (g2 > sqr(stray_) && nearOther(i))
             {
                 fail
@@ -421,24 +454,33 @@ bool Foam::processorGhosts::talk
     }
     hdr[7] = rMax;
     hdr[8] = skin;
+    // the owned set or the ghosts changed since the last build (not just
+    // moved): the ghost sets this side sent are out of date
+    const bool changed = stale && dem_world_list_invalid(world_);
+    // the rounding of the core's single-precision build positions, per
+    // displacement measured against them
+    const scalar rounding =
+        1.2e-7*max(mag(ownBox_.min()), mag(ownBox_.max()));
 
     // the storage indices of the ids sent (the core re-sorts at builds)
     const int64_t reorders = dem_world_reorder_count(world_);
     auto mapIndices = [&]()
     {
         if (reorders == sendReorder_) return;
-        Map<label> index(2*n + 1);
+        // id -> storage index (a table by id: no allocation per particle)
         for (label i = 0; i < n; ++i)
         {
-            index.insert(label(a.id[i]), i);
+            idSlot(indexById_, a.id[i]) = i;
         }
         forAll(sendIds_, k)
         {
             sendIdx_[k].setSize(sendIds_[k].size());
             forAll(sendIds_[k], j)
             {
-                const auto it = index.cfind(label(sendIds_[k][j]));
-                if (!it.found())
+                const int64_t id = sendIds_[k][j];
+                const label i =
+                    id >= 0 && id < indexById_.size() ? indexById_[id] : -1;
+                if (i < 0 || i >= n || a.id[i] != id)
                 {
                     FatalErrorInFunction
                         << "ghost particle " << label(sendIds_[k][j])
@@ -446,7 +488,7 @@ bool Foam::processorGhosts::talk
                         << "longer owned here between renewals; please "
                         << "report this" << exit(FatalError);
                 }
-                sendIdx_[k][j] = *it;
+                sendIdx_[k][j] = i;
             }
         }
         sendReorder_ = reorders;
@@ -464,7 +506,13 @@ bool Foam::processorGhosts::talk
         {
             thr = partnerSkin_[k];
         }
-        ask[k] = start || stale || S_ - sRef_[k] + d > 0.25*thr;
+        const bool far = S_ - sRef_[k] + d > 0.5*thr;
+        ask[k] = (start && renewAll_) || changed || far;
+        if (!dead_)
+        {
+            counts_.askStale += changed;
+            counts_.askSkin += !changed && far;
+        }
         int flags = (ask[k] ? askRenew : 0) | (dead_ ? isDead : 0);
         const bool states = !ask[k] && !dead_;
         if (states) flags |= hasStates;
@@ -503,7 +551,12 @@ bool Foam::processorGhosts::talk
     DynamicList<char> buf;
     for (label k = 0; k < np; ++k)
     {
+        const auto w0 = std::chrono::steady_clock::now();
         receiveBytes(partners_[k], tagHeader, buf);
+        counts_.wait += std::chrono::duration<double>
+        (
+            std::chrono::steady_clock::now() - w0
+        ).count();
         const size_t nd = size_t(buf.size())/sizeof(double);
         const double* in = reinterpret_cast<const double*>(buf.cdata());
         if (nd < size_t(headerSize))
@@ -570,9 +623,8 @@ bool Foam::processorGhosts::talk
             const FixedList<double, headerSize>& b = theirs[k];
             const scalar rPair = max(rMax, b[7]);
             std::vector<char>& o = sets[k];
-            o.assign(2*sizeof(int64_t), 0);
             sendIds_[k].clear();
-            int64_t count = 0;
+            DynamicList<label> chosen;
             for (label i = 0; i < n; ++i)
             {
                 const scalar reach = a.radius[i] + rPair + skin0_;
@@ -590,17 +642,23 @@ bool Foam::processorGhosts::talk
                 }
                 if (d2 >= sqr(reach)) continue;
                 sendIds_[k].append(a.id[i]);
-                o.resize(o.size() + gs);
+                chosen.append(i);
+            }
+            // one allocation for the set: count header, then the ghosts
+            const int64_t count = chosen.size();
+            o.assign(2*sizeof(int64_t) + size_t(count)*gs, 0);
+            forAll(chosen, j)
+            {
                 size_t sz = gs;
                 world_.check
                 (
                     dem_world_pack_ghost
                     (
-                        world_, size_t(i), o.data() + o.size() - gs, &sz
+                        world_, size_t(chosen[j]),
+                        o.data() + 2*sizeof(int64_t) + size_t(j)*gs, &sz
                     ),
                     "dem_world_pack_ghost"
                 );
-                ++count;
             }
             const int64_t pre[2] = {int64_t(gs), count};
             std::memcpy(o.data(), pre, sizeof pre);
@@ -610,7 +668,12 @@ bool Foam::processorGhosts::talk
         for (label k = 0; k < np; ++k)
         {
             if (!renew[k]) continue;
+            const auto w0 = std::chrono::steady_clock::now();
             receiveBytes(partners_[k], tagSet, buf);
+            counts_.wait += std::chrono::duration<double>
+            (
+                std::chrono::steady_clock::now() - w0
+            ).count();
             recvSet_[k].assign(buf.cdata(), buf.cdata() + buf.size());
             int64_t pre[2] = {0, 0};
             if (recvSet_[k].size() >= sizeof pre)
@@ -635,7 +698,7 @@ bool Foam::processorGhosts::talk
 
     // the ghosts here: all sets unpacked again when any pair renewed (the
     // others then get this step's states), else the states set in place
-    const bool unpack = anyRenew || (start && !dead_);
+    const bool unpack = anyRenew || (start && renewAll_ && !dead_);
     if (unpack)
     {
         world_.check(dem_world_clear_ghosts(world_), "dem_world_clear_ghosts");
@@ -681,22 +744,55 @@ bool Foam::processorGhosts::talk
             "dem_world_set_ghost_states"
         );
     }
+    // the ghosts here may have moved more than half a skin since this
+    // side's last list build (the core's criterion for the owned ones):
+    // rebuild it (no renewal needed)
+    scalar thrAll = skin;
+    for (const scalar sk : partnerSkin_)
+    {
+        if (sk > 0 && (thrAll <= 0 || sk < thrAll)) thrAll = sk;
+    }
+    const bool partnerFar =
+        !dead_ && !unpack
+     && dem_world_ghost_displacement(world_) + rounding > 0.5*thrAll;
+    if (partnerFar && !stale && !unpack && !dead_)
+    {
+        world_.check
+        (
+            dem_world_invalidate_list(world_), "dem_world_invalidate_list"
+        );
+    }
     UPstream::waitRequests(req0);
 
     // the displacement bounds (processorGhosts.C, top)
-    const bool rebuilt = !dead_ && (stale || unpack);
+    const bool rebuilt = !dead_ && (stale || unpack || partnerFar);
     if (start)
     {
-        S_ = 0;
-        sRef_ = 0;
+        renewAll_ = false;
     }
-    else if (rebuilt)
+    if (rebuilt)
     {
-        S_ += d + 1.2e-7*max(mag(ownBox_.min()), mag(ownBox_.max()));
+        S_ += d + rounding;
         for (label k = 0; k < np; ++k)
         {
             if (renew[k]) sRef_[k] = S_;
         }
+        counts_.partnerRebuilds += partnerFar && !stale && !unpack;
+    }
+    // the displacement since the last build (the next call's start)
+    dLast_ = rebuilt ? 0 : d;
+    if (start)
+    {
+        ++counts_.calls;
+        for (const char b : renew) counts_.startRenewals += b;
+    }
+    else
+    {
+        ++counts_.steps;
+        counts_.rebuilds += rebuilt;
+        for (const char b : renew) counts_.renewals += b;
+        counts_.ghosts += double(world_.arrays().n_ghost);
+        counts_.owned += double(n);
     }
     if (partnerDead && !dead_)
     {
@@ -728,15 +824,19 @@ dem_status Foam::processorGhosts::step(const label m)
     };
     // ghosts before the first drift too: it may rebuild the neighbour list
     // (after a migration), which must see them to keep the contact history
-    // of pairs across processors
-    talk(true, false, 0);
+    // of pairs across processors.  A pair renews here only if either side's
+    // owned set changed since the last step (migration, insertion, removal,
+    // a restored checkpoint: the list is invalid) or its half skin is
+    // used up; on the first call every pair renews
+    talk(true, !dead_ && dem_world_list_stale(world_), dLast_);
     for (label s = 0; s < m; ++s)
     {
         ++stepCount_;
         bool pending = false;
         if (!dead_)
         {
-            const dem_status st = world_.tryDrift();
+            // the start checks once per call, as dem_world_step(w, m)
+            const dem_status st = world_.tryDrift(s == 0);
             if (st != DEM_OK) fail(st, why(st));
             else pending = true;
         }
@@ -756,6 +856,30 @@ dem_status Foam::processorGhosts::step(const label m)
         world_.captureContacts();
     }
     return ownStatus_;
+}
+
+
+std::string Foam::processorGhosts::summary() const
+{
+    const counts& c = counts_;
+    const double s = max(c.steps, label(1));
+    char line[512];
+    std::snprintf
+    (
+        line, sizeof line,
+        "ghost exchange: %ld DEM steps in %ld calls, partners %ld; pair "
+        "renewals at the calls' start %ld; per DEM step: pair renewals "
+        "%.4f (this side asked, start included: owned set changed %.4f, "
+        "half skin %.4f), list rebuilds %.4f (for a partner's ghosts "
+        "%.4f), owned %.0f, ghosts %.0f (%.1f %%); blocked in receives "
+        "%.3f s",
+        long(c.steps), long(c.calls), long(partners_.size()),
+        long(c.startRenewals),
+        c.renewals/s, c.askStale/s, c.askSkin/s, c.rebuilds/s,
+        c.partnerRebuilds/s,
+        c.owned/s, c.ghosts/s, 100*c.ghosts/max(c.owned, 1.0), c.wait
+    );
+    return line;
 }
 
 
@@ -780,6 +904,11 @@ dem_status Foam::processorGhosts::agree(std::string& failure)
         failure = "DEM core: " + why[p] + " (processor "
           + std::to_string(p) + ")";
         st = ownStatus_ != DEM_OK ? ownStatus_ : DEM_ERR_STATE;
+    }
+    if (st != DEM_OK)
+    {
+        // the fluid step is undone from its checkpoint: every pair renews
+        renewAll_ = true;
     }
     dead_ = false;
     ownStatus_ = DEM_OK;
