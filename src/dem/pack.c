@@ -39,104 +39,156 @@ static int *row_owner(const dem_world *w)
     return inv;
 }
 
-/* pack_particle (hist = 1) and pack_ghost (hist = 0: no contact history) */
-static dem_status pack(const dem_world *w, size_t index, void *buf, size_t *size, int hist, const char *fn)
+/* the header of particle index with npair pair and nwall wall contacts */
+static void fill_head(const dem_world *w, size_t index, uint32_t npair, uint32_t nwall, pack_head *hd)
 {
-    DEM_NEED(w, size, fn);
-    if (index >= w->n + w->ng)
-        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: index %zu; allowed below %zu (owned + ghost particles)",
-                        fn, index, w->n + w->ng);
-    int *inv = hist ? row_owner(w) : NULL;
-    if (hist && !w->list_valid && !inv && w->nrows)
-        return DEM_FAIL(w, DEM_ERR_NOMEM, "%s: row map", fn);
+    memset(hd, 0, sizeof *hd);
+    hd->magic = PACK_MAGIC; hd->npair = npair; hd->nwall = nwall;
+    hd->id = w->id[index];
+    for (int c = 0; c < 3; ++c) {
+        hd->xvwft[c] = w->x[3 * index + c]; hd->xvwft[3 + c] = w->v[3 * index + c];
+        hd->xvwft[6 + c] = w->w[3 * index + c]; hd->xvwft[9 + c] = w->f[3 * index + c];
+        hd->xvwft[12 + c] = w->t[3 * index + c];
+    }
+    hd->rad = w->rad[index]; hd->mass = w->mass[index]; hd->rho = w->rho[index]; hd->mat = w->mat_of[index];
+    if (w->have_ext) {
+        hd->flags = 1;
+        for (int c = 0; c < 3; ++c) {
+            hd->ext[c] = w->fext[3 * index + c]; hd->ext[3 + c] = w->text[3 * index + c];
+            hd->ext[7 + c] = w->uf[3 * index + c]; hd->ext[10 + c] = w->J[3 * index + c];
+        }
+        hd->ext[6] = w->K[index];
+        hd->ext[13] = w->Ma[index];
+    }
+}
+
+static int nonzero(const double *h) { return h[0] != 0 || h[1] != 0 || h[2] != 0; }
+
+/* The m particles idx[] one after the other, each as a single pack would
+ * write it; with hist their contacts come from one pass over the neighbour
+ * list for all m (O(list + m), not O(m x list)): a pair (row r, partner j)
+ * goes to r's record as seen from r and to j's with the sign flipped, in
+ * list order, as the one-particle pack orders it.  buf NULL: *bytes and
+ * sizes[] only (sizes may be NULL). */
+static dem_status pack_many(const dem_world *w, const size_t *idx, size_t m, void *buf, size_t *bytes,
+                            size_t *sizes, int hist, const char *fn)
+{
+    DEM_NEED(w, bytes, fn);
+    if (m) DEM_NEED(w, idx, fn);
+    const size_t ntot = w->n + w->ng;
+    for (size_t q = 0; q < m; ++q)
+        if (idx[q] >= ntot)
+            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: index %zu (entry %zu of %zu); allowed below %zu (owned + ghost "
+                            "particles)", fn, idx[q], q, m, ntot);
+    const int lists = hist && w->nb_off && w->nrows;
+    dem_status st = DEM_OK;
+    int *inv = NULL, *slot = NULL;
+    uint32_t *npair = calloc(m ? 2 * m : 1, sizeof *npair), *nwall = npair + m;
+    size_t *off = malloc((m + 1) * sizeof *off);
+    char *seen = m > 1 ? calloc(ntot, 1) : NULL;
+    if (!npair || !off || (m > 1 && !seen)) { st = DEM_FAIL(w, DEM_ERR_NOMEM, "%s: %zu particles", fn, m); goto out; }
+    for (size_t q = 0; q < m && seen; ++q) {
+        if (seen[idx[q]]) {
+            st = DEM_FAIL(w, DEM_ERR_ARG, "%s: index %zu given twice (index[%zu]); each particle once", fn, idx[q], q);
+            goto out;
+        }
+        seen[idx[q]] = 1;
+    }
+    if (lists) {
+        inv = row_owner(w);
+        slot = malloc(w->nrows * sizeof *slot);
+        if ((!w->list_valid && !inv) || !slot) { st = DEM_FAIL(w, DEM_ERR_NOMEM, "%s: row map", fn); goto out; }
+        for (size_t r = 0; r < w->nrows; ++r) slot[r] = -1;
+        for (size_t q = 0; q < m; ++q) {
+            int row = w->list_index[idx[q]];
+            if (row >= 0 && (size_t)row < w->nrows) slot[row] = (int)q;
+        }
+    }
 #define OWNER(r) (inv ? inv[(r)] : (int)(r))
-    int row = hist && w->nb_off ? w->list_index[index] : -1;
-    if ((size_t)row >= w->nrows) row = -1;
-    uint32_t npair = 0, nwall = 0;
-    pack_head hd;
-    memset(&hd, 0, sizeof hd);
-    /* count */
+    /* pass 0 counts, pass 1 writes */
     for (int pass = 0; pass < 2; ++pass) {
-        char *out = buf ? (char *)buf + sizeof hd : NULL;
-        npair = nwall = 0;
-        if (row >= 0) {
-            for (size_t r = 0; r < w->nrows; ++r) {
-                for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
-                    const double *h = w->nb_h + 3 * (size_t)k;
-                    if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
-                    int other, sign;
-                    if ((int)r == row) { other = w->nb_j[k]; sign = 1; }
-                    else if (w->nb_j[k] == row) { other = (int)r; sign = -1; }
-                    else continue;
-                    int po = OWNER(other);
-                    if (po < 0) continue;
-                    if (pass == 1 && out) {
+        if (pass == 1) {
+            off[0] = 0;
+            for (size_t q = 0; q < m; ++q)
+                off[q + 1] = off[q] + sizeof(pack_head) + npair[q] * sizeof(pack_pair) + nwall[q] * sizeof(pack_wall);
+            if (sizes) for (size_t q = 0; q < m; ++q) sizes[q] = off[q + 1] - off[q];
+            if (!buf) { *bytes = off[m]; goto out; }
+            if (*bytes < off[m]) {
+                st = DEM_FAIL(w, DEM_ERR_RANGE, "%s: *size = %zu bytes; need %zu", fn, *bytes, off[m]);
+                goto out;
+            }
+            *bytes = off[m];
+            for (size_t q = 0; q < m; ++q) {
+                pack_head hd;
+                fill_head(w, idx[q], npair[q], nwall[q], &hd);
+                memcpy((char *)buf + off[q], &hd, sizeof hd);
+                npair[q] = nwall[q] = 0; /* cursors from here */
+            }
+        }
+        if (!lists) continue;
+        for (size_t r = 0; r < w->nrows; ++r) {
+            for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
+                const double *h = w->nb_h + 3 * (size_t)k;
+                if (!nonzero(h)) continue;
+                const int j = w->nb_j[k];
+                /* as seen from r (partner j), then as seen from j (partner r) */
+                for (int side = 0; side < 2; ++side) {
+                    const int q = side ? slot[j] : slot[r], po = OWNER(side ? (int)r : j);
+                    if (q < 0 || po < 0) continue;
+                    if (pass == 1) {
                         pack_pair pp;
                         pp.partner = w->id[po];
-                        for (int c = 0; c < 3; ++c) pp.h[c] = sign * h[c];
-                        memcpy(out + (size_t)npair * sizeof pp, &pp, sizeof pp);
+                        for (int c = 0; c < 3; ++c) pp.h[c] = side ? -h[c] : h[c];
+                        memcpy((char *)buf + off[q] + sizeof(pack_head) + npair[q] * sizeof pp, &pp, sizeof pp);
                     }
-                    npair++;
-                }
-            }
-            if (w->wc_off) {
-                char *wout = out ? out + (size_t)npair * sizeof(pack_pair) : NULL;
-                for (int k = w->wc_off[row]; k < w->wc_off[row + 1]; ++k) {
-                    const double *h = w->wc_h + 3 * (size_t)k;
-                    if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
-                    if (pass == 1 && wout) {
-                        pack_wall pw;
-                        pw.wall = w->wc_wall[k]; pw.tri = w->wc_tri[k];
-                        memcpy(pw.h, h, sizeof pw.h);
-                        memcpy(wout + (size_t)nwall * sizeof pw, &pw, sizeof pw);
-                    }
-                    nwall++;
+                    npair[q]++;
                 }
             }
         }
-        if (pass == 0) {
-            size_t need = sizeof hd + npair * sizeof(pack_pair) + nwall * sizeof(pack_wall);
-            if (!buf) { *size = need; free(inv); return DEM_OK; }
-            if (*size < need) {
-                free(inv);
-                return DEM_FAIL(w, DEM_ERR_RANGE, "%s: *size = %zu bytes; need %zu", fn, *size, need);
+        for (size_t q = 0; q < m && w->wc_off; ++q) {
+            const int row = w->list_index[idx[q]];
+            if (row < 0 || (size_t)row >= w->nrows) continue;
+            char *wout = pass ? (char *)buf + off[q] + sizeof(pack_head) + npair[q] * sizeof(pack_pair) : NULL;
+            for (int k = w->wc_off[row]; k < w->wc_off[row + 1]; ++k) {
+                const double *h = w->wc_h + 3 * (size_t)k;
+                if (!nonzero(h)) continue;
+                if (wout) {
+                    pack_wall pw;
+                    pw.wall = w->wc_wall[k]; pw.tri = w->wc_tri[k];
+                    memcpy(pw.h, h, sizeof pw.h);
+                    memcpy(wout + nwall[q] * sizeof pw, &pw, sizeof pw);
+                }
+                nwall[q]++;
             }
-            *size = need;
         }
     }
 #undef OWNER
+out:
+    free(seen);
+    free(off);
+    free(npair);
+    free(slot);
     free(inv);
-    hd.magic = PACK_MAGIC; hd.npair = npair; hd.nwall = nwall;
-    hd.id = w->id[index];
-    for (int c = 0; c < 3; ++c) {
-        hd.xvwft[c] = w->x[3 * index + c]; hd.xvwft[3 + c] = w->v[3 * index + c];
-        hd.xvwft[6 + c] = w->w[3 * index + c]; hd.xvwft[9 + c] = w->f[3 * index + c];
-        hd.xvwft[12 + c] = w->t[3 * index + c];
-    }
-    hd.rad = w->rad[index]; hd.mass = w->mass[index]; hd.rho = w->rho[index]; hd.mat = w->mat_of[index];
-    if (w->have_ext) {
-        hd.flags = 1;
-        for (int c = 0; c < 3; ++c) {
-            hd.ext[c] = w->fext[3 * index + c]; hd.ext[3 + c] = w->text[3 * index + c];
-            hd.ext[7 + c] = w->uf[3 * index + c]; hd.ext[10 + c] = w->J[3 * index + c];
-        }
-        hd.ext[6] = w->K[index];
-        hd.ext[13] = w->Ma[index];
-    }
-    memcpy(buf, &hd, sizeof hd);
-    return DEM_OK;
+    return st;
+}
+
+dem_status dem_world_pack_particles(const dem_world *w, const size_t *index, size_t m, void *buf, size_t *bytes,
+                                    size_t *sizes)
+{
+    if (!w) return DEM_ERR_ARG;
+    return pack_many(w, index, m, buf, bytes, sizes, 1, "pack_particles");
 }
 
 dem_status dem_world_pack_particle(const dem_world *w, size_t index, void *buf, size_t *size)
 {
     if (!w) return DEM_ERR_ARG;
-    return pack(w, index, buf, size, 1, "pack_particle");
+    return pack_many(w, &index, 1, buf, size, NULL, 1, "pack_particle");
 }
 
 dem_status dem_world_pack_ghost(const dem_world *w, size_t index, void *buf, size_t *size)
 {
     if (!w) return DEM_ERR_ARG;
-    return pack(w, index, buf, size, 0, "pack_ghost");
+    return pack_many(w, &index, 1, buf, size, NULL, 0, "pack_ghost");
 }
 
 dem_status dem_world_unpack_particle(dem_world *w, const void *buf, size_t size, int ghost)

@@ -674,6 +674,72 @@ static void order_and_bookkeeping(void)
     dem_world_destroy(&w);
 }
 
+/*--- (c') pack_particles: m particles in one call -------------------------------------------*/
+/* the records equal dem_world_pack_particle's one by one, byte for byte, with
+   a valid list and after it is invalidated (the row map path of a migration) */
+static void pack_many_case(dem_world *w, const char *when)
+{
+    dem_arrays A;
+    TRY(w, dem_world_arrays(w, &A));
+    size_t idx[120], m = 0, sg = 0;
+    for (size_t i = A.n_owned; i-- > 0 && m < 120;) /* reverse order: records follow index[], not storage */
+        if (i % 3) idx[m++] = i;
+    size_t *sizes = malloc(m * sizeof *sizes), bytes = 0;
+    TRY(w, dem_world_pack_particles(w, idx, m, NULL, &bytes, sizes));
+    char *many = malloc(bytes), *one = malloc(bytes + 1);
+    size_t got = bytes, at = 0, differ = 0, with_history = 0;
+    TRY(w, dem_world_pack_particles(w, idx, m, many, &got, NULL));
+    TRY(w, dem_world_pack_ghost(w, 0, NULL, &sg));
+    for (size_t q = 0; q < m; ++q) {
+        size_t sz = 0;
+        TRY(w, dem_world_pack_particle(w, idx[q], NULL, &sz));
+        differ += sz != sizes[q];
+        with_history += sz > sg;
+        if (at + sz <= bytes) TRY(w, dem_world_pack_particle(w, idx[q], one + at, &sz));
+        at += sz;
+    }
+    char nm[160];
+    snprintf(nm, sizeof nm, "pack_particles %s: %zu particles: bytes = sum of pack_particle sizes", when, m);
+    check_abs(nm, (double)got, (double)at, 0.0);
+    snprintf(nm, sizeof nm, "pack_particles %s: records whose size differs from pack_particle's", when);
+    check_abs(nm, (double)differ, 0, 0);
+    snprintf(nm, sizeof nm, "pack_particles %s: records with contact history (not vacuous)", when);
+    check_range(nm, (double)with_history, 10, (double)m);
+    snprintf(nm, sizeof nm, "pack_particles %s: bytes differing from the one-by-one packing", when);
+    check_abs(nm, at == got ? (double)(memcmp(many, one, got) != 0) : 1.0, 0, 0);
+    free(many);
+    free(one);
+    free(sizes);
+}
+
+static void pack_many(void)
+{
+    dem_world *w = make_a(BED_WALLS);
+    TRY(w, dem_world_step(w, 3000)); /* contacts with history by then */
+    pack_many_case(w, "valid list");
+    size_t idx[3] = {3, 5, 3}, bytes = 0, small;
+    char buf[64];
+    check_status("pack_particles with an index given twice: DEM_ERR_ARG",
+                 dem_world_pack_particles(w, idx, 3, NULL, &bytes, NULL), DEM_ERR_ARG);
+    printf("# message: %s\n", dem_world_last_error(w));
+    idx[2] = 100000;
+    check_status("pack_particles with an index out of range: DEM_ERR_RANGE",
+                 dem_world_pack_particles(w, idx, 3, NULL, &bytes, NULL), DEM_ERR_RANGE);
+    printf("# message: %s\n", dem_world_last_error(w));
+    TRY(w, dem_world_pack_particles(w, idx, 2, NULL, &bytes, NULL));
+    small = bytes - 1;
+    char *b = malloc(bytes);
+    check_status("pack_particles into a buffer one byte too small: DEM_ERR_RANGE",
+                 dem_world_pack_particles(w, idx, 2, b, &small, NULL), DEM_ERR_RANGE);
+    free(b);
+    bytes = 7;
+    check_status("pack_particles of no particle", dem_world_pack_particles(w, NULL, 0, buf, &bytes, NULL), DEM_OK);
+    check_abs("pack_particles of no particle: bytes", (double)bytes, 0, 0);
+    TRY(w, dem_world_invalidate_list(w));
+    pack_many_case(w, "invalidated list");
+    dem_world_destroy(&w);
+}
+
 /*--- (d) ghost order, set_ghost_states, list control ----------------------------------------*/
 /* ghost ids at positions 0..ng-1 equal ref[] (count of differences; ng mismatch counts 1000) */
 static int ghost_order_diff(dem_world *w, const int64_t *ref, size_t ng)
@@ -932,6 +998,7 @@ int main(void)
     bed(QUICK ? 300 : 2000);
     cfg_skin = 0;
     order_and_bookkeeping();
+    pack_many();
     ghost_order_and_list_control();
     drift_displacement();
     return check_exit();

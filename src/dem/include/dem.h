@@ -489,6 +489,15 @@ int dem_world_setup_diff(const dem_world *a, const dem_world *b, char *what, siz
  * with it wins over the one this side kept while it was a ghost here). */
 /** Bytes needed to pack particle i with its contact history (buf NULL) or pack it. */
 dem_status dem_world_pack_particle(const dem_world *w, size_t index, void *buf, size_t *size);
+/** Added: pack the m particles index[0..m-1] with their contact history, one
+ *  after the other in that order, each record byte-identical to
+ *  dem_world_pack_particle's; one pass over the neighbour list for all m (a
+ *  migration costs O(list + m), not O(m x list)).  buf NULL: *bytes = the
+ *  bytes needed; else *bytes is buf's size in and the bytes written out.
+ *  sizes (may be NULL) gets each record's bytes.  DEM_ERR_RANGE for an index
+ *  out of range or a too small buffer, DEM_ERR_ARG for an index given twice. */
+dem_status dem_world_pack_particles(const dem_world *w, const size_t *index, size_t m, void *buf, size_t *bytes,
+                                    size_t *sizes);
 /** Added: as dem_world_pack_particle but without any contact history, for a
  *  ghost copy (the receiving side keeps its own owned-ghost history across
  *  dem_world_clear_ghosts; packed history would add duplicate pending entries). */

@@ -463,22 +463,35 @@ void Foam::particleDecomposition::migrate
     // the centre of the processor face the walk left through (else a
     // point no face has)
     List<point> through(leaving.size(), point::max);
+    // all of them in one pass over the neighbour list (docs/demCore.md)
+    {
+        std::vector<size_t> idx(leaving.begin(), leaving.end());
+        std::vector<size_t> sz(idx.size());
+        size_t bytes = 0;
+        world_.check
+        (
+            dem_world_pack_particles
+            (
+                world_, idx.data(), idx.size(), nullptr, &bytes, sz.data()
+            ),
+            "dem_world_pack_particles"
+        );
+        out.resize(bytes);
+        world_.check
+        (
+            dem_world_pack_particles
+            (
+                world_, idx.data(), idx.size(), out.data(), &bytes, nullptr
+            ),
+            "dem_world_pack_particles"
+        );
+        forAll(leaving, k)
+        {
+            sizes[k] = label(sz[k]);
+        }
+    }
     forAll(leaving, k)
     {
-        const size_t i = size_t(leaving[k]);
-        size_t sz = 0;
-        world_.check
-        (
-            dem_world_pack_particle(world_, i, nullptr, &sz),
-            "dem_world_pack_particle"
-        );
-        out.resize(out.size() + sz);
-        world_.check
-        (
-            dem_world_pack_particle(world_, i, out.data() + out.size() - sz, &sz),
-            "dem_world_pack_particle"
-        );
-        sizes[k] = label(sz);
         where[k] = box_.wrapped(a.x, leaving[k]);
         if (exitFace[k] >= 0 && locator_.processorBehind(exitFace[k]) >= 0)
         {
