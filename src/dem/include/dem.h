@@ -216,7 +216,7 @@ dem_status dem_world_step(dem_world *w, int64_t nsteps);
  *  the start half kick and the drift of the owned particles, step and time
  *  advanced, outlets and inlets run (on an outlet/inlet error the end kick
  *  is done and the step is complete, as dem_world_step(w, 1) does).  Then
- *  the caller may migrate (dem_world_pack_particle, dem_world_remove_particle
+ *  the caller may migrate (dem_world_pack_particles, dem_world_remove_particle
  *  (w, i, -1), dem_world_unpack_particle(w, ..., 0)) and refresh the ghosts
  *  (dem_world_clear_ghosts, dem_world_pack_ghost, dem_world_unpack_particle
  *  (w, ..., 1)), read and write the arrays, before
