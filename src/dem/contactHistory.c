@@ -95,6 +95,14 @@ static dem_status push_carry(dem_world *w, int a, int b, const double *h)
     return DEM_OK;
 }
 
+/* room for the carry rows' offsets (a function: GROWTO returns on failure,
+   and the caller has its own allocations to free then) */
+static dem_status grow_carry_off(dem_world *w, size_t need)
+{
+    GROWTO(w->carry_off, w->capcarry_off, need, int);
+    return DEM_OK;
+}
+
 static int cmp_dem_wcarry(const void *a, const void *b)
 {
     const dem_wcarry *x = a, *y = b;
@@ -145,7 +153,7 @@ dem_status dem_carry_collect(dem_world *w, dem_carried *out)
         w->npend = 0;
     }
     /* carry CSR by row a: counting sort */
-    GROWTO(w->carry_off, w->capcarry_off, np + 2, int);
+    if ((st = grow_carry_off(w, np + 2))) { free(old2new); free(im.key); free(im.val); return st; }
     dem_carry *cs2 = malloc((w->ncarry + 1) * sizeof(dem_carry));
     if (!cs2) { free(old2new); free(im.key); free(im.val); return DEM_FAIL(w, DEM_ERR_NOMEM, "carry"); }
     memset(w->carry_off, 0, (np + 2) * sizeof(int));
