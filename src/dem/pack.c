@@ -83,10 +83,15 @@ static dem_status pack_many(const dem_world *w, const size_t *idx, size_t m, voi
     const int lists = hist && w->nb_off && w->nrows;
     dem_status st = DEM_OK;
     int *inv = NULL, *slot = NULL;
-    uint32_t *npair = calloc(m ? 2 * m : 1, sizeof *npair), *nwall = npair + m;
-    size_t *off = malloc((m + 1) * sizeof *off);
-    char *seen = m > 1 ? calloc(ntot, 1) : NULL;
-    if (!npair || !off || (m > 1 && !seen)) { st = DEM_FAIL(w, DEM_ERR_NOMEM, "%s: %zu particles", fn, m); goto out; }
+    /* one particle (pack_particle, and pack_ghost once per ghost sent):
+       counts and offsets on the stack, no allocation */
+    uint32_t cnt1[2] = {0, 0};
+    size_t off1[2];
+    const int heap = m > 1;
+    uint32_t *npair = heap ? calloc(2 * m, sizeof *npair) : cnt1, *nwall = npair ? npair + m : NULL;
+    size_t *off = heap ? malloc((m + 1) * sizeof *off) : off1;
+    char *seen = heap ? calloc(ntot, 1) : NULL;
+    if (!npair || !off || (heap && !seen)) { st = DEM_FAIL(w, DEM_ERR_NOMEM, "%s: %zu particles", fn, m); goto out; }
     for (size_t q = 0; q < m && seen; ++q) {
         if (seen[idx[q]]) {
             st = DEM_FAIL(w, DEM_ERR_ARG, "%s: index %zu given twice (index[%zu]); each particle once", fn, idx[q], q);
@@ -165,8 +170,7 @@ static dem_status pack_many(const dem_world *w, const size_t *idx, size_t m, voi
 #undef OWNER
 out:
     free(seen);
-    free(off);
-    free(npair);
+    if (heap) { free(off); free(npair); }
     free(slot);
     free(inv);
     return st;

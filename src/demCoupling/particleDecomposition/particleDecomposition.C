@@ -464,9 +464,9 @@ void Foam::particleDecomposition::migrate
     // point no face has)
     List<point> through(leaving.size(), point::max);
     // all of them in one pass over the neighbour list (docs/demCore.md)
+    std::vector<size_t> sz(leaving.size());
     {
         std::vector<size_t> idx(leaving.begin(), leaving.end());
-        std::vector<size_t> sz(idx.size());
         size_t bytes = 0;
         world_.check
         (
@@ -485,13 +485,10 @@ void Foam::particleDecomposition::migrate
             ),
             "dem_world_pack_particles"
         );
-        forAll(leaving, k)
-        {
-            sizes[k] = label(sz[k]);
-        }
     }
     forAll(leaving, k)
     {
+        sizes[k] = label(sz[k]);
         where[k] = box_.wrapped(a.x, leaving[k]);
         if (exitFace[k] >= 0 && locator_.processorBehind(exitFace[k]) >= 0)
         {
