@@ -237,6 +237,7 @@ dem_status dem_cells_build(dem_world *w)
             if (w->have_ext) {
                 permute_d(w, w->fext, 3, n); permute_d(w, w->text, 3, n); permute_d(w, w->uf, 3, n);
                 permute_d(w, w->J, 3, n); permute_d(w, w->K, 1, n); permute_d(w, w->Ma, 1, n);
+                for (int k = 0; k < DEM_N_TAGS; ++k) permute_i64(w, w->tag[k], n);
             }
             w->reorders++;
         }

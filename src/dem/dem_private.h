@@ -158,6 +158,7 @@ struct dem_world {
     /* coupling arrays, allocated on first dem_world_arrays() call */
     int have_ext;
     double *fext, *text, *K, *uf, *J;
+    int64_t *tag[DEM_N_TAGS]; /* the caller's per-particle values (dem.h DEM_N_TAGS) */
     double *Ma;              /* added (virtual) mass [kg], see dem.h added_mass */
     int64_t next_id;
 

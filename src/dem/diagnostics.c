@@ -70,7 +70,7 @@ dem_status dem_world_memory(const dem_world *w, size_t *particle_bytes, size_t *
     /* id, x, v, w, f, t, radius, mass, density, material, x0 (float), list_index */
     size_t per = sizeof(int64_t) + 15 * sizeof(double) + 3 * sizeof(double) + sizeof(int) +
                  3 * sizeof(float) + sizeof(int);
-    if (w->have_ext) per += 14 * sizeof(double);
+    if (w->have_ext) per += 14 * sizeof(double) + DEM_N_TAGS * sizeof(int64_t);
     if (particle_bytes) *particle_bytes = w->cap * per;
     if (list_bytes)
         *list_bytes = w->capnb * (sizeof(int) + 1 + 3 * sizeof(double)) + w->caprows * sizeof(int) +

@@ -21,6 +21,7 @@ static dem_status reserve_raw(dem_world *w, size_t cap)
     if (w->have_ext) {
         GROW(w->fext, 3 * cap); GROW(w->text, 3 * cap); GROW(w->K, cap);
         GROW(w->uf, 3 * cap); GROW(w->J, 3 * cap); GROW(w->Ma, cap);
+        for (int k = 0; k < DEM_N_TAGS; ++k) GROW(w->tag[k], cap);
     }
     w->cap = cap;
     return DEM_OK;
@@ -52,9 +53,16 @@ dem_status dem_ext_alloc(dem_world *w)
     w->uf = calloc(3 * cap, sizeof(double));
     w->J = calloc(3 * cap, sizeof(double));
     w->Ma = calloc(cap, sizeof(double));
-    if (!w->fext || !w->text || !w->K || !w->uf || !w->J || !w->Ma) {
+    int tags_ok = 1;
+    for (int k = 0; k < DEM_N_TAGS; ++k) {
+        w->tag[k] = malloc(cap * sizeof(int64_t));
+        tags_ok = tags_ok && w->tag[k];
+        if (w->tag[k]) for (size_t i = 0; i < cap; ++i) w->tag[k][i] = -1;
+    }
+    if (!w->fext || !w->text || !w->K || !w->uf || !w->J || !w->Ma || !tags_ok) {
         free(w->fext); free(w->text); free(w->K); free(w->uf); free(w->J); free(w->Ma);
         w->fext = w->text = w->K = w->uf = w->J = w->Ma = NULL;
+        for (int k = 0; k < DEM_N_TAGS; ++k) { free(w->tag[k]); w->tag[k] = NULL; }
         return DEM_FAIL(w, DEM_ERR_NOMEM, "coupling arrays for %zu particles", cap);
     }
     w->have_ext = 1;
@@ -81,6 +89,7 @@ static void move_particle(dem_world *w, size_t dst, size_t src)
         memcpy(w->J + 3 * dst, w->J + 3 * src, 3 * sizeof(double));
         w->K[dst] = w->K[src];
         w->Ma[dst] = w->Ma[src];
+        for (int k = 0; k < DEM_N_TAGS; ++k) w->tag[k][dst] = w->tag[k][src];
     }
 }
 
@@ -95,6 +104,7 @@ static void move_block(dem_world *w, size_t dst, size_t src, size_t cnt)
     MB(w->rad, 1); MB(w->mass, 1); MB(w->rho, 1); MB(w->mat_of, 1); MB(w->list_index, 1);
     if (w->have_ext) {
         MB(w->fext, 3); MB(w->text, 3); MB(w->uf, 3); MB(w->J, 3); MB(w->K, 1); MB(w->Ma, 1);
+        for (int k = 0; k < DEM_N_TAGS; ++k) MB(w->tag[k], 1);
     }
 #undef MB
 }
@@ -179,6 +189,7 @@ dem_status dem_append_particle(dem_world *w, const dem_particle *p)
             w->fext[3 * i + k] = w->text[3 * i + k] = w->uf[3 * i + k] = w->J[3 * i + k] = 0.0;
         w->K[i] = 0.0;
         w->Ma[i] = 0.0;
+        for (int k = 0; k < DEM_N_TAGS; ++k) w->tag[k][i] = -1;
     }
     w->n++;
     w->list_valid = 0;
@@ -295,5 +306,6 @@ dem_status dem_world_arrays(dem_world *w, dem_arrays *a)
     a->force_ext = w->fext; a->torque_ext = w->text;
     a->drag_coeff = w->K; a->fluid_velocity = w->uf; a->drag_impulse = w->J;
     a->added_mass = w->Ma;
+    for (int k = 0; k < DEM_N_TAGS; ++k) a->tag[k] = w->tag[k];
     return DEM_OK;
 }

@@ -46,6 +46,7 @@ void dem_world_destroy(dem_world **pw)
     free(w->rad); free(w->mass); free(w->rho); free(w->mat_of); free(w->x0);
     free(w->list_index);
     free(w->fext); free(w->text); free(w->K); free(w->uf); free(w->J); free(w->Ma);
+    for (int k = 0; k < DEM_N_TAGS; ++k) free(w->tag[k]);
     free(w->cell_start); free(w->cell_item); free(w->cell_of); free(w->perm);
     free(w->old2new); free(w->tmp);
     free(w->nb_off); free(w->nb_j); free(w->nb_s); free(w->nb_h);

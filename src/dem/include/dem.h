@@ -174,6 +174,13 @@ dem_status dem_world_add_particles(dem_world *w, size_t n, const dem_particle *p
  *  back if the particle returns as a ghost (decomposition support below). */
 dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet);
 
+/** Added: the caller's per-particle values (dem_arrays.tag): the core never
+ *  reads them; a particle keeps its tags through re-sorts, removals' swaps
+ *  and ghost shifts; insertion, unpack and restore set them to -1 (they are
+ *  neither packed nor saved).  E.g. the host cell of the fluid mesh, looked
+ *  up by storage index instead of by a table over all ids. */
+#define DEM_N_TAGS 3
+
 typedef struct {
     size_t n_owned, n_ghost;
     const int64_t *id;
@@ -188,6 +195,7 @@ typedef struct {
     double *added_mass;             /* added: m_a,i [kg] >= 0 (default 0), e.g. virtual mass
                                        C_vm rho_f V_p: translational inertia m + m_a, gravity m g
                                        (the particle feels -m_a dv/dt, implicitly); kept until changed */
+    int64_t *tag[DEM_N_TAGS];       /* added: 1 per particle each, the caller's (see DEM_N_TAGS) */
 } dem_arrays;
 
 /** Direct access to the particle arrays (see validity rule at the top). */

@@ -75,12 +75,12 @@ struct Foam::demCoupling::stepData
         impK(nExtra, List<vector>(n, Zero))
     {}
 
-    //- Start index of a particle id, -1 for one inserted during the step
-    label startOf(const int64_t id, const DynamicList<label>& startById) const
+    //- Start index of owned particle j (its startTag, checked against
+    //  the ids at the start), -1 for one inserted during the step
+    label startOf(const dem_arrays& a, const label j) const
     {
-        if (id < 0 || id >= startById.size()) return -1;
-        const label s = startById[id];
-        return (s >= 0 && s < n && idStart[s] == id) ? s : -1;
+        const int64_t s = a.tag[demTools::startTag][j];
+        return (s >= 0 && s < n && idStart[s] == a.id[j]) ? label(s) : -1;
     }
 };
 
@@ -191,11 +191,11 @@ void Foam::demCoupling::sampleFluid
     vectorField vortCell, DuDtCell;
     extraForceFields(U, vortCell, DuDtCell);
 
-    // id -> start index, and the ids by start index (a.id may be
-    // reordered later)
+    // start index in the particle's tag, and the ids by start index (the
+    // core may re-sort the particles during the DEM sub-steps)
     for (label s = 0; s < n; ++s)
     {
-        idSlot(startById_, a.id[s]) = s;
+        a.tag[startTag][s] = s;
         sd.idStart[s] = a.id[s];
     }
 
@@ -284,7 +284,7 @@ bool Foam::demCoupling::subStep(stepData& sd)
         const label nDrag = ghosts_.dead() ? 0 : label(a.n_owned);
         for (label j = 0; j < nDrag; ++j)
         {
-            const label s = sd.startOf(a.id[j], startById_);
+            const label s = sd.startOf(a, j);
             if (s < 0)
             {
                 // inserted during this fluid step: no drag until located
@@ -440,7 +440,7 @@ void Foam::demCoupling::exchange
     for (label j = 0; j < nEnd; ++j)
     {
         state_.outIds[j] = a.id[j];
-        const label s = sd.startOf(a.id[j], startById_);
+        const label s = sd.startOf(a, j);
         if (s < 0)
         {
             inserted.append(a.id[j]);

@@ -160,7 +160,6 @@ void Foam::demCoupling::settle(const int64_t nSettle)
     // processor for a fluid step's worth of DEM steps, then moves to the
     // processor whose cells hold it: docs/parallel.md)
     const int64_t piece = subSteps(mesh_.time().deltaTValue());
-    DynamicList<label> hostById;
     label moved = 0;
     for (int64_t done = 0; done < nSettle; )
     {
@@ -174,7 +173,7 @@ void Foam::demCoupling::settle(const int64_t nSettle)
                 << "time " << dem_world_time(world_) << " s: " << why.c_str()
                 << exit(FatalError);
         }
-        moved += decomposition_.moveToOwners(hostById);
+        moved += decomposition_.moveToOwners();
         done += m;
         diag_.settling(done, nSettle, w0, wallLast);
     }

@@ -101,9 +101,10 @@ void Foam::meshCloud::locate(std::string& failure)
 
     for (label i = 0; i < n; ++i)
     {
-        label& host = idSlot(hostById_, a.id[i]);
+        int64_t& host = a.tag[hostTag][i];
         label exitFace = -1;
-        const label c = locator_.locate(box_.wrapped(a.x, i), host, exitFace);
+        const label c =
+            locator_.locate(box_.wrapped(a.x, i), label(host), exitFace);
         host = c;
         if (c < 0)
         {
@@ -119,7 +120,7 @@ void Foam::meshCloud::locate(std::string& failure)
     labelList exitPatch(leaving.size(), -1);
     if (Pstream::parRun())
     {
-        decomposition_.migrate(leaving, leavingFace, taken, exitPatch, hostById_);
+        decomposition_.migrate(leaving, leavingFace, taken, exitPatch);
         a = world_.arrays();
     }
 
@@ -206,7 +207,7 @@ void Foam::meshCloud::locate(std::string& failure)
     host_.setSize(label(a.n_owned));
     forAll(host_, i)
     {
-        host_[i] = hostById_[a.id[i]];
+        host_[i] = label(a.tag[hostTag][i]);
     }
 }
 

@@ -348,16 +348,16 @@ void Foam::particleDecomposition::distributeByCell()
 }
 
 
-Foam::label Foam::particleDecomposition::moveToOwners(DynamicList<label>& hostById)
+Foam::label Foam::particleDecomposition::moveToOwners()
 {
     const dem_arrays a = world_.arrays();
     const label n = label(a.n_owned);
     DynamicList<label> leaving, exitFace;
     for (label i = 0; i < n; ++i)
     {
-        label& host = idSlot(hostById, a.id[i]);
+        int64_t& host = a.tag[hostTag][i];
         label f = -1;
-        host = locator_.locate(box_.wrapped(a.x, i), host, f);
+        host = locator_.locate(box_.wrapped(a.x, i), label(host), f);
         if (host < 0)
         {
             leaving.append(i);
@@ -366,7 +366,7 @@ Foam::label Foam::particleDecomposition::moveToOwners(DynamicList<label>& hostBy
     }
     boolList taken;
     labelList exitPatch;
-    migrate(leaving, exitFace, taken, exitPatch, hostById);
+    migrate(leaving, exitFace, taken, exitPatch);
     // from the highest index down (removal swaps with the last)
     label given = 0;
     for (label k = leaving.size() - 1; k >= 0; --k)
@@ -428,8 +428,7 @@ void Foam::particleDecomposition::migrate
     const DynamicList<label>& leaving,
     const DynamicList<label>& exitFace,
     boolList& taken,
-    labelList& exitPatch,
-    DynamicList<label>& hostById
+    labelList& exitPatch
 )
 {
     const auto t0 = std::chrono::steady_clock::now();
@@ -637,7 +636,7 @@ void Foam::particleDecomposition::migrate
                 "dem_world_unpack_particle"
             );
             const dem_arrays b = world_.arrays();
-            idSlot(hostById, b.id[b.n_owned - 1]) = inCell[k][label(j)];
+            b.tag[hostTag][b.n_owned - 1] = inCell[k][label(j)];
         }
     }
     UPstream::waitRequests(req0);

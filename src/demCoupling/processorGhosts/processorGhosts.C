@@ -127,7 +127,8 @@ Foam::processorGhosts::processorGhosts
     sendIds_(),
     sendIdx_(),
     sendReorder_(-1),
-    indexById_(),
+    mappedN_(0),
+    newIndex_(),
     recvSet_(),
     recvCount_(),
     recvFirst_(),
@@ -462,25 +463,28 @@ bool Foam::processorGhosts::talk
     const scalar rounding =
         1.2e-7*max(mag(ownBox_.min()), mag(ownBox_.max()));
 
-    // the storage indices of the ids sent (the core re-sorts at builds)
+    // the storage indices of the ids sent, in the order of the last
+    // mapping (stamped in each particle's indexTag): after a re-sort or a
+    // removal the tags give each one's new index (memory O(particles here))
     const int64_t reorders = dem_world_reorder_count(world_);
     auto mapIndices = [&]()
     {
         if (reorders == sendReorder_) return;
-        // id -> storage index (a table by id: no allocation per particle)
+        newIndex_.setSize(mappedN_);
+        newIndex_ = -1;
         for (label i = 0; i < n; ++i)
         {
-            idSlot(indexById_, a.id[i]) = i;
+            const int64_t old = a.tag[indexTag][i];
+            if (old >= 0 && old < mappedN_) newIndex_[label(old)] = i;
         }
         forAll(sendIds_, k)
         {
-            sendIdx_[k].setSize(sendIds_[k].size());
-            forAll(sendIds_[k], j)
+            forAll(sendIdx_[k], j)
             {
-                const int64_t id = sendIds_[k][j];
+                const label old = sendIdx_[k][j];
                 const label i =
-                    id >= 0 && id < indexById_.size() ? indexById_[id] : -1;
-                if (i < 0 || i >= n || a.id[i] != id)
+                    old >= 0 && old < mappedN_ ? newIndex_[old] : -1;
+                if (i < 0 || a.id[i] != sendIds_[k][j])
                 {
                     FatalErrorInFunction
                         << "ghost particle " << label(sendIds_[k][j])
@@ -491,6 +495,11 @@ bool Foam::processorGhosts::talk
                 sendIdx_[k][j] = i;
             }
         }
+        for (label i = 0; i < n; ++i)
+        {
+            a.tag[indexTag][i] = i;
+        }
+        mappedN_ = n;
         sendReorder_ = reorders;
     };
 
@@ -522,7 +531,7 @@ bool Foam::processorGhosts::talk
         if (states)
         {
             mapIndices();
-            const labelList& idx = sendIdx_[k];
+            const labelUList& idx = sendIdx_[k];
             o.resize(headerSize + 9*idx.size());
             double* v = o.data() + headerSize;
             forAll(idx, j)
@@ -608,6 +617,18 @@ bool Foam::processorGhosts::talk
     List<std::vector<char>> sets(np);
     if (anyRenew)
     {
+        // the partners that keep their sets: their indices in this order
+        // (the renewed ones' below are in it too; after a restore only
+        // renewals happen, and the tags are gone)
+        for (label k = 0; k < np; ++k)
+        {
+            if (renew[k])
+            {
+                sendIds_[k].clear();
+                sendIdx_[k].clear();
+            }
+        }
+        mapIndices();
         size_t gs = 0;
         if (n)
         {
@@ -624,7 +645,8 @@ bool Foam::processorGhosts::talk
             const scalar rPair = max(rMax, b[7]);
             std::vector<char>& o = sets[k];
             sendIds_[k].clear();
-            DynamicList<label> chosen;
+            DynamicList<label>& chosen = sendIdx_[k];
+            chosen.clear();
             for (label i = 0; i < n; ++i)
             {
                 const scalar reach = a.radius[i] + rPair + skin0_;
@@ -664,7 +686,6 @@ bool Foam::processorGhosts::talk
             std::memcpy(o.data(), pre, sizeof pre);
             sendBytes(partners_[k], tagSet, o.data(), o.size());
         }
-        sendReorder_ = -1;
         for (label k = 0; k < np; ++k)
         {
             if (!renew[k]) continue;
