@@ -24,10 +24,15 @@ Foam::instantList caseTimes(const Foam::Time& runTime)
     return Foam::instantList(std::move(t));
 }
 
-// Whether the current time is the first of the case's times t
+// Whether the current time is the first of the case's times t.  Within
+// 1e-10 relative, not instant::equal's 1e-15: a time's uniform/time value
+// may differ from its directory name in the last digits (2.499999999998888
+// in 2.5/), and two written times are at least a step apart
 bool isFirst(const Foam::Time& runTime, const Foam::instantList& t)
 {
-    return t.empty() || t.first().equal(runTime.value());
+    if (t.empty()) return true;
+    const Foam::scalar a = t.first().value(), b = runTime.value();
+    return Foam::mag(a - b) <= 1e-10*Foam::max(Foam::scalar(1), Foam::mag(b));
 }
 
 } // End anonymous namespace
