@@ -30,7 +30,7 @@ dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const char *fn)
     for (size_t r = 0; r < w->nrows; ++r) {
         for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
             const double *h = w->nb_h + 3 * (size_t)k;
-            if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+            if (!dem_history_nonzero(h)) continue;
             if (only >= 0 && (int)r != row && w->nb_j[k] != row) continue;
             int a = inv[r], b = inv[w->nb_j[k]];
             if (a < 0 || b < 0) continue;
@@ -133,7 +133,7 @@ dem_status dem_carry_collect(dem_world *w, dem_carried *out)
         for (size_t r = 0; r < oldrows; ++r) {
             for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
                 const double *h = w->nb_h + 3 * (size_t)k;
-                if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+                if (!dem_history_nonzero(h)) continue;
                 int b = w->nb_j[k];
                 if ((st = push_carry(w, old2new[r], (size_t)b < oldrows ? old2new[b] : -1, h))) {
                     free(old2new); return st;
@@ -173,7 +173,7 @@ dem_status dem_carry_collect(dem_world *w, dem_carried *out)
             if (old2new[r] < 0) continue;
             for (int k = w->wc_off[r]; k < w->wc_off[r + 1]; ++k) {
                 const double *h = w->wc_h + 3 * (size_t)k;
-                if (h[0] == 0 && h[1] == 0 && h[2] == 0) continue;
+                if (!dem_history_nonzero(h)) continue;
                 dem_wcarry *c = &wcar[nwcar++];
                 c->p = old2new[r]; c->wall = w->wc_wall[k]; c->tri = w->wc_tri[k];
                 memcpy(c->h, h, 3 * sizeof(double));

@@ -312,4 +312,8 @@ static inline double dem_dot(const double *a, const double *b)
 static inline void dem_cross(const double *a, const double *b, double *c)
 { c[0] = a[1]*b[2] - a[2]*b[1]; c[1] = a[2]*b[0] - a[0]*b[2]; c[2] = a[0]*b[1] - a[1]*b[0]; }
 
+/* Whether a stored tangential history (3 doubles) holds a contact: zero
+ * means none (contact.c clears it when a pair separates). */
+static inline int dem_history_nonzero(const double *h) { return h[0] != 0 || h[1] != 0 || h[2] != 0; }
+
 #endif

@@ -62,7 +62,6 @@ static void fill_head(const dem_world *w, size_t index, uint32_t npair, uint32_t
     }
 }
 
-static int nonzero(const double *h) { return h[0] != 0 || h[1] != 0 || h[2] != 0; }
 
 /* The m particles idx[] one after the other, each as a single pack would
  * write it; with hist their contacts come from one pass over the neighbour
@@ -134,7 +133,7 @@ static dem_status pack_many(const dem_world *w, const size_t *idx, size_t m, voi
         for (size_t r = 0; r < w->nrows; ++r) {
             for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
                 const double *h = w->nb_h + 3 * (size_t)k;
-                if (!nonzero(h)) continue;
+                if (!dem_history_nonzero(h)) continue;
                 const int j = w->nb_j[k];
                 /* as seen from r (partner j), then as seen from j (partner r) */
                 for (int side = 0; side < 2; ++side) {
@@ -156,7 +155,7 @@ static dem_status pack_many(const dem_world *w, const size_t *idx, size_t m, voi
             char *wout = pass ? (char *)buf + off[q] + sizeof(pack_head) + npair[q] * sizeof(pack_pair) : NULL;
             for (int k = w->wc_off[row]; k < w->wc_off[row + 1]; ++k) {
                 const double *h = w->wc_h + 3 * (size_t)k;
-                if (!nonzero(h)) continue;
+                if (!dem_history_nonzero(h)) continue;
                 if (wout) {
                     pack_wall pw;
                     pw.wall = w->wc_wall[k]; pw.tri = w->wc_tri[k];
