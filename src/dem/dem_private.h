@@ -312,6 +312,14 @@ static inline double dem_dot(const double *a, const double *b)
 static inline void dem_cross(const double *a, const double *b, double *c)
 { c[0] = a[1]*b[2] - a[2]*b[1]; c[1] = a[2]*b[0] - a[0]*b[2]; c[2] = a[0]*b[1] - a[1]*b[0]; }
 
+/* The caller's tags of particles [first, first + n) to -1 (a new particle,
+ * an unpacked or a restored one: dem.h DEM_N_TAGS); coupling arrays only. */
+static inline void dem_tags_reset(dem_world *w, size_t first, size_t n)
+{
+    for (int k = 0; k < DEM_N_TAGS; ++k)
+        for (size_t i = first; i < first + n; ++i) w->tag[k][i] = -1;
+}
+
 /* Whether a stored tangential history (3 doubles) holds a contact: zero
  * means none (contact.c clears it when a pair separates). */
 static inline int dem_history_nonzero(const double *h) { return h[0] != 0 || h[1] != 0 || h[2] != 0; }

@@ -293,7 +293,7 @@ dem_status dem_world_unpack_particle(dem_world *w, const void *buf, size_t size,
         }
         w->K[i] = hd.ext[6];
         w->Ma[i] = hd.ext[13];
-        for (int k = 0; k < DEM_N_TAGS; ++k) w->tag[k][i] = -1; /* not packed (dem.h) */
+        dem_tags_reset(w, i, 1); /* not packed (dem.h) */
     }
     const char *p = (const char *)buf + sizeof hd;
     for (uint32_t k = 0; k < hd.npair; ++k) {

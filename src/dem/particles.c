@@ -57,7 +57,6 @@ dem_status dem_ext_alloc(dem_world *w)
     for (int k = 0; k < DEM_N_TAGS; ++k) {
         w->tag[k] = malloc(cap * sizeof(int64_t));
         tags_ok = tags_ok && w->tag[k];
-        if (w->tag[k]) for (size_t i = 0; i < cap; ++i) w->tag[k][i] = -1;
     }
     if (!w->fext || !w->text || !w->K || !w->uf || !w->J || !w->Ma || !tags_ok) {
         free(w->fext); free(w->text); free(w->K); free(w->uf); free(w->J); free(w->Ma);
@@ -65,6 +64,7 @@ dem_status dem_ext_alloc(dem_world *w)
         for (int k = 0; k < DEM_N_TAGS; ++k) { free(w->tag[k]); w->tag[k] = NULL; }
         return DEM_FAIL(w, DEM_ERR_NOMEM, "coupling arrays for %zu particles", cap);
     }
+    dem_tags_reset(w, 0, cap);
     w->have_ext = 1;
     return DEM_OK;
 }
@@ -189,7 +189,7 @@ dem_status dem_append_particle(dem_world *w, const dem_particle *p)
             w->fext[3 * i + k] = w->text[3 * i + k] = w->uf[3 * i + k] = w->J[3 * i + k] = 0.0;
         w->K[i] = 0.0;
         w->Ma[i] = 0.0;
-        for (int k = 0; k < DEM_N_TAGS; ++k) w->tag[k][i] = -1;
+        dem_tags_reset(w, i, 1);
     }
     w->n++;
     w->list_valid = 0;

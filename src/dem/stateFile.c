@@ -233,8 +233,7 @@ static dem_status load_world(wio *o, dem_world *w, const char *path, dem_world *
         get(o, w->K, np * sizeof(double)); get(o, w->uf, 3 * np * sizeof(double));
         get(o, w->J, 3 * np * sizeof(double));
         if (ver >= 3u) get(o, w->Ma, np * sizeof(double));
-        for (int k = 0; k < DEM_N_TAGS; ++k)
-            for (size_t i = 0; i < np; ++i) w->tag[k][i] = -1; /* not saved (dem.h) */
+        dem_tags_reset(w, 0, np); /* not saved (dem.h) */
     }
     uint64_t nrows = 0, nnb = 0, nwc = 0;
     GET(o, w->list_valid); GET(o, nrows); GET(o, nnb); GET(o, nwc);

@@ -644,9 +644,7 @@ bool Foam::processorGhosts::talk
             const FixedList<double, headerSize>& b = theirs[k];
             const scalar rPair = max(rMax, b[7]);
             std::vector<char>& o = sets[k];
-            sendIds_[k].clear();
-            DynamicList<label>& chosen = sendIdx_[k];
-            chosen.clear();
+            DynamicList<label>& chosen = sendIdx_[k];   // cleared above
             for (label i = 0; i < n; ++i)
             {
                 const scalar reach = a.radius[i] + rPair + skin0_;
