@@ -23,7 +23,8 @@ Foam::List<Foam::keySpec> Foam::voidageModels::divided::coeffKeys()
     using kind = keySpec::kind;
     return List<keySpec>
     ({
-        keySpec::num("nLattice", kind::Label, 2, 12, false, false)
+        keySpec::num("nLattice", kind::Label, 2, 12, false, false),
+        keySpec::num("radiusFactor", kind::Scalar, 1, 5, false, false)
     });
 }
 
@@ -33,7 +34,8 @@ Foam::voidageModels::divided::divided
     const dictionary& dict, const fvMesh& mesh, const particleLocator& l
 )
 :
-    voidageModel(typeName, dict, mesh, l)
+    voidageModel(typeName, dict, mesh, l),
+    radiusFactor_(coeffs_.getOrDefault<scalar>("radiusFactor", 1.0))
 {
     const label n = coeffs_.getOrDefault<label>("nLattice", 6);
     if (n < 2 || n > 12)
@@ -41,6 +43,12 @@ Foam::voidageModels::divided::divided
         FatalIOErrorInFunction(coeffs_)
             << "dividedCoeffs/nLattice " << n << " in " << coeffs_.name()
             << ": allowed 2..12" << exit(FatalIOError);
+    }
+    if (radiusFactor_ < 1 || radiusFactor_ > 5)
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "dividedCoeffs/radiusFactor " << radiusFactor_ << " in "
+            << coeffs_.name() << ": allowed 1..5" << exit(FatalIOError);
     }
     DynamicList<vector> pts;
     const scalar h = 2.0/n;
@@ -64,11 +72,13 @@ Foam::voidageModels::divided::divided
 
 void Foam::voidageModels::divided::addWeights
 (
-    const point& x, const scalar r, const label hostCell,
+    const point& x, const scalar rp, const label hostCell,
     DynamicList<label>& cells, DynamicList<scalar>& weights,
     DynamicList<remoteSample>& remote
 ) const
 {
+    // the sampled sphere: the particle's, or radiusFactor times wider
+    const scalar r = radiusFactor_*rp;
     const label start = cells.size();
     const scalar w = 1.0/samples_.size();
 
