@@ -11,7 +11,8 @@ Description
     walk that leaves this processor through a processor face is continued
     on the neighbour processor from the cell behind that face, and on from
     there if it leaves again: the point ends in the cell a serial run finds,
-    or outside the mesh (then, as in serial, in the host cell).
+    or outside the mesh (then, as in serial, in the host cell, or dropped
+    for a model that drops such points: divided with radiusFactor > 1).
 
     A cell of another processor in a particle's weights is a halo slot
     (wCells_ < 0).  The processor that holds the cell keeps, per processor
@@ -55,7 +56,8 @@ void Foam::particleMeshMap::resolveRemote
 (
     const labelUList& owner,
     const UList<remoteSample>& remote,
-    const labelUList& host
+    const labelUList& host,
+    const bool dropOutside
 )
 {
     const label nProcs = Pstream::nProcs();
@@ -248,8 +250,14 @@ void Foam::particleMeshMap::resolveRemote
             values.append(wValues_[m]);
         }
         bool across = false;
+        scalar dropped = 0;
         for (; k < remote.size() && owner[k] == i; ++k)
         {
+            if (resProc[k] < 0 && dropOutside)
+            {
+                dropped += remote[k].w;
+                continue;
+            }
             across = across || (resProc[k] >= 0 && resProc[k] != me);
             const label code =
                 resProc[k] < 0 ? host[i]
@@ -269,6 +277,14 @@ void Foam::particleMeshMap::resolveRemote
             {
                 cells.append(code);
                 values.append(remote[k].w);
+            }
+        }
+        if (dropped > 0)
+        {
+            // the particle's volume over its parts inside the mesh
+            for (label m = start[i]; m < cells.size(); ++m)
+            {
+                values[m] /= 1 - dropped;
             }
         }
         if (across) ++haloParticleSteps_;

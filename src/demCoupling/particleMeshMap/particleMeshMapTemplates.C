@@ -57,7 +57,7 @@ void Foam::particleMeshMap::compute
         }
     }
     wStart_[n] = wCells_.size();
-    resolveRemote(remoteOwner, remote, host);
+    resolveRemote(remoteOwner, remote, host, voidage.dropsOutside());
 }
 
 

@@ -165,7 +165,14 @@ void Foam::voidageModels::divided::addWeights
                 ++nRemote;
                 continue;
             }
-            // outside the mesh: counted in the host cell
+            if (radiusFactor_ > 1)
+            {
+                // outside the mesh, in the widened sphere: dropped, the
+                // others share its volume (normalisation below)
+                continue;
+            }
+            // outside the mesh (beyond a wall the particle touches at
+            // most): counted in the host cell
             c = hostCell;
         }
         else
@@ -188,7 +195,8 @@ void Foam::voidageModels::divided::addWeights
             weights.append(w);
         }
     }
-    // make the sum exactly 1 (round-off of repeated additions)
+    // make the sum exactly 1 (round-off of repeated additions, and the
+    // points dropped outside the mesh)
     scalar sum = nRemote*w;
     for (label k = start; k < cells.size(); ++k)
     {
