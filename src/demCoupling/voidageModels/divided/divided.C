@@ -165,7 +165,7 @@ void Foam::voidageModels::divided::addWeights
                 ++nRemote;
                 continue;
             }
-            if (radiusFactor_ > 1)
+            if (dropsOutside())
             {
                 // outside the mesh, in the widened sphere: dropped, the
                 // others share its volume (normalisation below)
