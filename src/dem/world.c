@@ -114,6 +114,13 @@ static void config_copy(dem_config *dst, const dem_config *c)
 _Static_assert(offsetof(dem_config, impact_speed) + sizeof(double) == sizeof(dem_config),
                "config_copy: a member after impact_speed must be copied too");
 
+dem_status dem_world_get_config(const dem_world *w, dem_config *c)
+{
+    if (!w || !c) return DEM_ERR_ARG;
+    *c = w->cfg;
+    return DEM_OK;
+}
+
 dem_status dem_world_configure_run(dem_world *w, const dem_config *c)
 {
     if (!w) return DEM_ERR_ARG;

@@ -150,6 +150,21 @@ int main(void)
     check_abs("restart: outlet count equal", (double)cc, (double)ca, 0.0);
     check_abs("restart: outlet mass equal", mc, ma, 0.0);
     check_abs("restart: time equal", dem_world_time(c), dem_world_time(a), 0.0);
+    {
+        /* the configuration of the restored world is the saved one
+           (demSplitState takes the periodic box from it) */
+        dem_config ga, gc;
+        TRY(a, dem_world_get_config(a, &ga));
+        TRY(c, dem_world_get_config(c, &gc));
+        check_abs("restart: dem_world_get_config: domain_hi[2] [m]", gc.domain_hi[2], 0.06, 0.0);
+        int differ = ga.contact_law != gc.contact_law || ga.dt != gc.dt || ga.skin != gc.skin;
+        for (int k = 0; k < 3; ++k)
+            differ += ga.periodic[k] != gc.periodic[k] || ga.domain_lo[k] != gc.domain_lo[k]
+                      || ga.domain_hi[k] != gc.domain_hi[k] || ga.gravity[k] != gc.gravity[k];
+        check_abs("restart: dem_world_get_config: law, dt, skin, box, periodicity, gravity that differ from the saving world's",
+                  (double)differ, 0.0, 0.0);
+        check_status("dem_world_get_config without a config", dem_world_get_config(c, NULL), DEM_ERR_ARG);
+    }
 
     check_state_bytes(n1);
 

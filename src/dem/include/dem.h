@@ -118,6 +118,9 @@ dem_status dem_world_configure(dem_world *w, const dem_config *c);
     impact_speed; checked as by dem_world_configure); the rest of the
     world's configuration stays (e.g. after dem_world_restore). */
 dem_status dem_world_configure_run(dem_world *w, const dem_config *c);
+/** The world's configuration as in use (e.g. the periodic box of a restored
+    state), copied into *c. */
+dem_status dem_world_get_config(const dem_world *w, dem_config *c);
 
 /*--- materials ------------------------------------------------------------*/
 /* Pairwise combination: 1/E* = (1-nu_i^2)/E_i + (1-nu_j^2)/E_j; friction,

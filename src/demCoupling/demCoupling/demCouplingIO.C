@@ -13,7 +13,7 @@ Description
 
 #include "demCoupling.H"
 #include "OSspecific.H"
-#include <fstream>
+#include "couplingStateFile.H"
 
 // * * * * * * * * * * * * * * * Member functions  * * * * * * * * * * * * //
 
@@ -118,38 +118,10 @@ void Foam::demCoupling::checkRestoredSetup
         << "time" << exit(FatalError);
 }
 
-// The coupling's own history for an exact restart: the fluid velocity of
-// the last step (du/dt of the extra forces), the periodic driving
-// gradient G and the insertion ramps.  Binary, native: "DEMCPL2\0",
-// nCells, time index of Uprev, G, Uprev, then (since insertionRampTime;
-// absent in older files: no ramps) the number of ramps and per ramp the
-// particle id and its start time.
+// The coupling's own history for an exact restart (couplingStateFile.H)
 void Foam::demCoupling::writeCouplingState(const fileName& file) const
 {
-    std::ofstream os(file.c_str(), std::ios::binary);
-    const char magic[8] = {'D', 'E', 'M', 'C', 'P', 'L', '2', '\0'};
-    const int64_t n = state_.Uprev.size();
-    os.write(magic, sizeof magic);
-    os.write(reinterpret_cast<const char*>(&n), sizeof n);
-    const int64_t index = state_.indexUprev;
-    os.write(reinterpret_cast<const char*>(&index), sizeof index);
-    os.write(reinterpret_cast<const char*>(state_.G.cdata()), 3*sizeof(scalar));
-    if (n)
-    {
-        os.write(reinterpret_cast<const char*>(state_.Uprev.cdata()), 3*n*sizeof(scalar));
-    }
-    const int64_t nRamp = state_.rampStart.size();
-    os.write(reinterpret_cast<const char*>(&nRamp), sizeof nRamp);
-    for (const auto& r : state_.rampStart)
-    {
-        os.write(reinterpret_cast<const char*>(&r.first), sizeof r.first);
-        os.write(reinterpret_cast<const char*>(&r.second), sizeof r.second);
-    }
-    if (!os.good())
-    {
-        FatalErrorInFunction
-            << "cannot write " << file << exit(FatalError);
-    }
+    writeCouplingStateFile(file, state_);
 }
 
 
@@ -159,62 +131,26 @@ void Foam::demCoupling::readCouplingState
     const bool serialState
 )
 {
-    std::ifstream is(file.c_str(), std::ios::binary);
-    char magic[8];
-    int64_t n = -1;
-    is.read(magic, sizeof magic);
-    is.read(reinterpret_cast<char*>(&n), sizeof n);
-    // a serial state restarted decomposed: the per-cell fluid velocity of
-    // the last step does not fit this processor's cells; it is dropped (the
-    // extra forces' du/dt restarts from the next step)
+    readCouplingStateFile(file, state_);
+    const label n = state_.Uprev.size();
+    // a serial state restarted decomposed (not split by demSplitState): the
+    // per-cell fluid velocity of the last step does not fit this
+    // processor's cells; it is dropped (the extra forces' du/dt restarts
+    // from the next step)
     const bool otherMesh = serialState && n != 0 && n != mesh_.nCells();
-    if
-    (
-        !is.good() || std::string(magic, 7) != "DEMCPL2"
-     || (n != 0 && n != mesh_.nCells() && !otherMesh)
-    )
+    if (n != 0 && n != mesh_.nCells() && !otherMesh)
     {
         FatalErrorInFunction
             << file << " is not a demFoam coupling state for this mesh ("
-            << mesh_.nCells() << " cells)" << exit(FatalError);
-    }
-    int64_t index = -2;
-    is.read(reinterpret_cast<char*>(&index), sizeof index);
-    state_.indexUprev = label(index);
-    is.read(reinterpret_cast<char*>(state_.G.data()), 3*sizeof(scalar));
-    state_.Uprev.setSize(n);
-    if (n)
-    {
-        is.read(reinterpret_cast<char*>(state_.Uprev.data()), 3*n*sizeof(scalar));
-    }
-    state_.rampStart.clear();
-    if (is.good() && is.peek() == std::ifstream::traits_type::eof())
-    {
-        is.clear();     // a file from before the ramps: none
-    }
-    else if (is.good())
-    {
-        int64_t nRamp = -1;
-        is.read(reinterpret_cast<char*>(&nRamp), sizeof nRamp);
-        for (int64_t k = 0; k < nRamp && is.good(); ++k)
-        {
-            int64_t id;
-            scalar t0;
-            is.read(reinterpret_cast<char*>(&id), sizeof id);
-            is.read(reinterpret_cast<char*>(&t0), sizeof t0);
-            state_.rampStart[id] = t0;
-        }
+            << mesh_.nCells() << " cells; it has " << n << ")"
+            << exit(FatalError);
     }
     if (otherMesh)
     {
         state_.Uprev.clear();
         state_.indexUprev = -2;
         Info<< "demCoupling: " << file << " is of the serial mesh: the fluid "
-            << "velocity of the last step is not carried over" << endl;
-    }
-    if (!is.good())
-    {
-        FatalErrorInFunction
-            << file << " is truncated" << exit(FatalError);
+            << "velocity of the last step is not carried over (demSplitState "
+            << "after decomposePar carries it over)" << endl;
     }
 }

@@ -143,7 +143,8 @@ bool Foam::particleDecomposition::restore
     const fileName state(haveOwn ? own : serial);
     Info<< "demCoupling: restoring the DEM state from "
         << (haveOwn ? own : serial)
-        << (haveSerial ? " (serial state: each processor keeps its own)" : "")
+        << (haveSerial ? " (serial state: each processor keeps its own;"
+            " demSplitState after decomposePar splits it once)" : "")
         << endl;
     world_.check(dem_world_restore(world_, state.c_str()), "dem_world_restore");
     world_.check(dem_world_clear_ghosts(world_), "dem_world_clear_ghosts");
