@@ -10,9 +10,11 @@
 #include <string.h>
 
 /* The non-zero tangential history of the current list into the pending
- * store by id: of the pairs of particle index `only` (only >= 0), or of all
- * owned-ghost pairs (only < 0).  fn names the caller in messages. */
-dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const char *fn)
+ * store by id: of the pairs of particle index `only` (only >= 0); with
+ * gone (only < 0), of the pairs between an owned particle with gone[q] != 0
+ * and one that stays (owned or ghost), in one pass; else of all owned-ghost
+ * pairs.  fn names the caller in messages. */
+dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const unsigned char *gone, const char *fn)
 {
     if (!w->nb_off || !w->nrows) return DEM_OK;
     int row = -1;
@@ -34,7 +36,10 @@ dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const char *fn)
             if (only >= 0 && (int)r != row && w->nb_j[k] != row) continue;
             int a = inv[r], b = inv[w->nb_j[k]];
             if (a < 0 || b < 0) continue;
-            if (only < 0 && (size_t)a < w->n && (size_t)b < w->n) continue;
+            if (only < 0 && gone) {
+                int ga = (size_t)a < w->n && gone[a], gb = (size_t)b < w->n && gone[b];
+                if (ga == gb) continue;
+            } else if (only < 0 && (size_t)a < w->n && (size_t)b < w->n) continue;
             if (w->npend == w->cappend) {
                 size_t nc = w->cappend ? 2 * w->cappend : 64;
                 dem_pending *q = realloc(w->pend, nc * sizeof *q);

@@ -291,7 +291,7 @@ int        dem_closest_on_triangle(const double *p, const double *a, const doubl
 dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayleigh, int damped, double *tc);
 double     dem_hertz_time(double meff, double rstar, double estar, double v);
 dem_status dem_remove_booked(dem_world *w, size_t i, int outlet);
-dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const char *fn);
+dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const unsigned char *gone, const char *fn);
 /* Checks of a restored state (stateCheck.c): 1 (message in err) if unusable */
 int        dem_state_check(dem_world *w, dem_world *err, const char *path);
 

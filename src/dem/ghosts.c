@@ -14,7 +14,7 @@ dem_status dem_world_clear_ghosts(dem_world *w)
     if (w->ng == 0) return DEM_OK;
     /* keep the history of owned-ghost contacts by id (a ghost unpacked
        again with the same id gets it back at the next list build) */
-    dem_status st = dem_history_to_pending(w, -1, "clear_ghosts");
+    dem_status st = dem_history_to_pending(w, -1, NULL, "clear_ghosts");
     if (st) return st;
     for (size_t i = w->n; i < w->n + w->ng; ++i) w->list_index[i] = -1;
     w->ng = 0;

@@ -284,10 +284,29 @@ dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet)
            owned here keeps it when the particle comes back as a ghost before
            the next list build (entries whose particles are not both here
            then are dropped there) */
-        dem_status s = dem_history_to_pending(w, (ptrdiff_t)index, "remove_particle");
+        dem_status s = dem_history_to_pending(w, (ptrdiff_t)index, NULL, "remove_particle");
         if (s) return s;
     }
     return dem_remove_booked(w, index, outlet);
+}
+
+dem_status dem_world_remove_unkept(dem_world *w, const unsigned char *keep)
+{
+    if (!w) return DEM_ERR_ARG;
+    DEM_NEED(w, keep, "remove_unkept");
+    const size_t n = w->n;
+    unsigned char *gone = calloc(n ? n : 1, 1);
+    if (!gone) return DEM_FAIL(w, DEM_ERR_NOMEM, "remove_unkept: mask of %zu particles", n);
+    for (size_t i = 0; i < n; ++i) gone[i] = !keep[i];
+    /* one pass over the list instead of one per particle (O(n) each) */
+    dem_status s = dem_history_to_pending(w, -1, gone, "remove_unkept");
+    free(gone);
+    if (s) return s;
+    /* from the highest index down: each removal moves the last particle,
+       one that stays, into the hole, as repeated remove_particle calls */
+    for (size_t i = n; i-- > 0;)
+        if (!keep[i]) dem_remove_index(w, i);
+    return DEM_OK;
 }
 
 dem_status dem_world_arrays(dem_world *w, dem_arrays *a)

@@ -44,6 +44,7 @@ Description
 #include "couplingStateFile.H"
 #include "demCouplingTools.H"
 #include "timeCompletion.H"
+#include <vector>
 
 using namespace Foam;
 
@@ -267,23 +268,22 @@ int main(int argc, char *argv[])
             "dem_world_restore_memory"
         );
         // as demFoam's restart of the whole state: inlets on processor 0,
-        // particles removed from the highest index down
+        // the others' particles removed (dem_world_remove_unkept)
         world.check(dem_world_clear_ghosts(world), "dem_world_clear_ghosts");
         if (p != 0)
         {
             world.check(dem_world_clear_inlets(world), "dem_world_clear_inlets");
         }
-        for (label i = n - 1; i >= 0; --i)
+        std::vector<unsigned char> keep(n);
+        forAll(owner, i)
         {
-            if (owner[i] != p)
-            {
-                world.check
-                (
-                    dem_world_remove_particle(world, size_t(i), -1),
-                    "dem_world_remove_particle"
-                );
-            }
+            keep[i] = owner[i] == p;
         }
+        world.check
+        (
+            dem_world_remove_unkept(world, keep.data()),
+            "dem_world_remove_unkept"
+        );
         nHere[p] = label(dem_world_count(world));
 
         const fileName procTimeDir

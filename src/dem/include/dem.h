@@ -176,6 +176,14 @@ dem_status dem_world_add_particles(dem_world *w, size_t n, const dem_particle *p
  *  by id until the next neighbour-list build, so that owned partners get it
  *  back if the particle returns as a ghost (decomposition support below). */
 dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet);
+/** Added: remove every owned particle i with keep[i] == 0 (keep: one entry
+ *  per owned particle), without an outlet, as dem_world_remove_particle(w,
+ *  i, -1) for each from the highest index down: the particles that stay end
+ *  in the same order, and the pair history between one that goes and one
+ *  that stays goes to the pending store (pairs of two that go are dropped).
+ *  One pass over the neighbour list: O(n + list), where the repeated calls
+ *  cost O(n + list) each (decomposed set-up from a whole state). */
+dem_status dem_world_remove_unkept(dem_world *w, const unsigned char *keep);
 
 /** Added: the caller's per-particle values (dem_arrays.tag): the core never
  *  reads them; a particle keeps its tags through re-sorts, removals' swaps

@@ -319,20 +319,19 @@ void Foam::particleDecomposition::distributeByCell()
     const bool near = near_;
     const label nAll = near ? nTotal_ : owner.size();
     near_ = false;
-    // from the highest index down: removal swaps with the last
-    for (label i = owner.size() - 1; i >= 0; --i)
+    // the others' particles in one pass (one dem_world_remove_particle per
+    // particle scanned the whole list each time: O(N^2) here)
+    std::vector<unsigned char> keep(owner.size());
+    forAll(owner, i)
     {
-        const bool mine =
+        keep[i] =
             owner[i] == me || (owner[i] < 0 && Pstream::master() && !near);
-        if (!mine)
-        {
-            world_.check
-            (
-                dem_world_remove_particle(world_, size_t(i), -1),
-                "dem_world_remove_particle"
-            );
-        }
     }
+    world_.check
+    (
+        dem_world_remove_unkept(world_, keep.data()),
+        "dem_world_remove_unkept"
+    );
     const label nMine = label(dem_world_count(world_));
     const label nSum = returnReduce(nMine, sumOp<label>());
     if (nSum != nAll)
