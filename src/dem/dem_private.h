@@ -224,6 +224,8 @@ struct dem_world {
     /* keep filter of the set-up (dem_world_set_keep_filter): placed but not
        stored particles as x, y, z, r (fill.c) */
     dem_inside_fn keep; void *keep_user;
+    /* optional box outside which keep refuses everything (lattice fills skip it) */
+    int keep_box_set; double keep_lo[3], keep_hi[3];
     double *shadow; size_t nshadow, capshadow;
 
     /* last force evaluation */
@@ -291,6 +293,10 @@ int        dem_closest_on_triangle(const double *p, const double *a, const doubl
 dem_status dem_contact_time_internal(const dem_world *w, double v_imp, int rayleigh, int damped, double *tc);
 double     dem_hertz_time(double meff, double rstar, double estar, double v);
 dem_status dem_remove_booked(dem_world *w, size_t i, int outlet);
+/* Checks of a cylinder's base, axis, radius and length (fn names the
+   caller) and its unit axis ax with two unit vectors e1, e2 across it (fill.c) */
+dem_status dem_cylinder_frame(dem_world *w, const char *fn, const double base[3], const double axis[3],
+                              double radius, double length, double ax[3], double e1[3], double e2[3]);
 dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const unsigned char *gone, const char *fn);
 /* Checks of a restored state (stateCheck.c): 1 (message in err) if unusable */
 int        dem_state_check(dem_world *w, dem_world *err, const char *path);

@@ -215,7 +215,7 @@ dem_status dem_world_set_keep_filter(dem_world *w, dem_inside_fn keep, void *use
 {
     if (!w) return DEM_ERR_ARG;
     w->keep = keep; w->keep_user = user;
-    if (!keep) { free(w->shadow); w->shadow = NULL; w->nshadow = w->capshadow = 0; }
+    if (!keep) { free(w->shadow); w->shadow = NULL; w->nshadow = w->capshadow = 0; w->keep_box_set = 0; }
     return DEM_OK;
 }
 
@@ -238,33 +238,42 @@ dem_status dem_world_fill_box(dem_world *w, const double lo[3], const double hi[
     return fill(w, &rg, n, t, inserted);
 }
 
+dem_status dem_cylinder_frame(dem_world *w, const char *fn, const double base[3], const double axis[3],
+                              double radius, double length, double ax[3], double e1[3], double e2[3])
+{
+    DEM_NEED(w, base, fn);
+    DEM_NEED(w, axis, fn);
+    double al = sqrt(dem_dot(axis, axis));
+    if (!(al > 0) || !isfinite(al))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: axis (%g %g %g); need finite, with a length > 0 "
+                        "and finite", fn, axis[0], axis[1], axis[2]);
+    if (!(radius > 0) || !(length > 0) || !isfinite(radius) || !isfinite(length))
+        return DEM_FAIL(w, DEM_ERR_RANGE, "%s: radius = %g, length = %g; need > 0 and finite", fn, radius, length);
+    for (int k = 0; k < 3; ++k)
+        if (!isfinite(base[k]))
+            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: base[%d] = %g; must be finite", fn, k, base[k]);
+    for (int k = 0; k < 3; ++k) ax[k] = axis[k] / al;
+    double tmp[3] = {1, 0, 0};
+    if (fabs(ax[0]) > 0.9) { tmp[0] = 0; tmp[1] = 1; }
+    dem_cross(ax, tmp, e1);
+    double l1 = sqrt(dem_dot(e1, e1));
+    for (int k = 0; k < 3; ++k) e1[k] /= l1;
+    dem_cross(ax, e1, e2);
+    return DEM_OK;
+}
+
 dem_status dem_world_fill_cylinder(dem_world *w, const double base[3], const double axis[3],
                                    double radius, double length, size_t n,
                                    const dem_particle_template *t, size_t *inserted)
 {
     if (!w) return DEM_ERR_ARG;
-    DEM_NEED(w, base, "fill_cylinder");
-    DEM_NEED(w, axis, "fill_cylinder");
-    double al = sqrt(dem_dot(axis, axis));
-    if (!(al > 0) || !isfinite(al))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: axis (%g %g %g); need finite, with a length > 0 "
-                        "and finite", axis[0], axis[1], axis[2]);
-    if (!(radius > 0) || !(length > 0) || !isfinite(radius) || !isfinite(length))
-        return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: radius = %g, length = %g; need > 0 and finite", radius, length);
-    for (int k = 0; k < 3; ++k)
-        if (!isfinite(base[k]))
-            return DEM_FAIL(w, DEM_ERR_RANGE, "fill_cylinder: base[%d] = %g; must be finite", k, base[k]);
     region rg;
     memset(&rg, 0, sizeof rg);
+    dem_status s = dem_cylinder_frame(w, "fill_cylinder", base, axis, radius, length, rg.ax, rg.e1, rg.e2);
+    if (s) return s;
     rg.kind = 1;
     rg.R = radius; rg.L = length;
-    for (int k = 0; k < 3; ++k) { rg.base[k] = base[k]; rg.ax[k] = axis[k] / al; }
-    double tmp[3] = {1, 0, 0};
-    if (fabs(rg.ax[0]) > 0.9) { tmp[0] = 0; tmp[1] = 1; }
-    dem_cross(rg.ax, tmp, rg.e1);
-    double l1 = sqrt(dem_dot(rg.e1, rg.e1));
-    for (int k = 0; k < 3; ++k) rg.e1[k] /= l1;
-    dem_cross(rg.ax, rg.e1, rg.e2);
+    for (int k = 0; k < 3; ++k) rg.base[k] = base[k];
     for (int k = 0; k < 3; ++k) {
         double top = base[k] + length * rg.ax[k];
         rg.lo[k] = fmin(base[k], top) - radius;

@@ -359,6 +359,27 @@ dem_status dem_world_fill_cylinder(dem_world *w, const double base[3], const dou
  *  the unfiltered one (*inserted of a fill counts it too).  NULL clears the
  *  filter and the shadow list.  Not part of the saved state. */
 dem_status dem_world_set_keep_filter(dem_world *w, dem_inside_fn keep, void *user);
+/** Added: a box outside which the keep filter refuses every position (NULL,
+ *  NULL: none; cleared with the filter), so that a lattice fill computes
+ *  only the cells near it. */
+dem_status dem_world_set_keep_box(dem_world *w, const double lo[3], const double hi[3]);
+
+/** Added: place n particles on a jittered cubic lattice filling the box
+ *  (layers along z) or the cylinder (layers along its axis): cells of edge
+ *  s, the largest with at least n cells inside the region; the full layers
+ *  from the bottom up and, in the last, cells chosen by a hash; each
+ *  particle's size, density and jitter (at most (s - d)/2 per direction: no
+ *  overlaps) drawn from a stream of its own index.  Every particle is a
+ *  function of (seed, first id, index): with a keep filter nothing is drawn
+ *  or kept for the cells outside (no shadow list; O(N/P) per processor).
+ *  The region must hold no particle placed before (DEM_ERR_RANGE naming
+ *  one); DEM_ERR_FULL if n cells of the largest diameter do not fit.  The
+ *  world's own random stream is left as it was. */
+dem_status dem_world_fill_lattice_box(dem_world *w, const double lo[3], const double hi[3], size_t n,
+                                      const dem_particle_template *t, size_t *inserted);
+dem_status dem_world_fill_lattice_cylinder(dem_world *w, const double base[3], const double axis[3],
+                                           double radius, double length, size_t n,
+                                           const dem_particle_template *t, size_t *inserted);
 
 typedef enum { DEM_RATE_NUMBER, DEM_RATE_MASS } dem_rate_kind;
 /** Stream insertion through a planar polygon (nv vertices, 3*nv doubles) at a

@@ -344,6 +344,7 @@ bool Foam::demCoupling::checkDictionary
     if (dict.isDict("initialParticles"))
     {
         const dictionary& all = dict.subDict("initialParticles");
+        word latticeBefore;
         for (const entry& e : all)
         {
             const word sc("initialParticles/" + e.keyword() + "/");
@@ -361,6 +362,7 @@ bool Foam::demCoupling::checkDictionary
                 , num("radius", kind::Scalar, 0, inf, true, false)
                 , num("length", kind::Scalar, 0, inf, true, false)
                 , any("insideMesh", kind::Bool)
+                , choice("arrangement", wordList({"random", "lattice"}))
                 , num("number", kind::Label, 1, inf, false, false)
                 , any("positions", kind::List)
                 , dist("diameter"), dist("density")
@@ -402,6 +404,23 @@ bool Foam::demCoupling::checkDictionary
             {
                 chk.fail(d, sc, "insideMesh", "", "only for type box or cylinder (a list's centres must all be inside the mesh)");
             }
+            if (type == "list" && d.found("arrangement"))
+            {
+                chk.fail(d, sc, "arrangement", d.get<word>("arrangement"), "only for type box or cylinder");
+            }
+            const bool lattice =
+                d.getOrDefault<word>("arrangement", "random") == "lattice";
+            if (lattice && d.getOrDefault<bool>("insideMesh", false))
+            {
+                chk.fail(d, sc, "insideMesh", "yes", "not with arrangement lattice (the lattice fills the box or cylinder itself; use arrangement random to take the mesh's shape)");
+            }
+            if (!lattice && type != "list" && Pstream::parRun() && latticeBefore != "")
+            {
+                // every processor draws a random fill against all particles
+                // before it, and a lattice fill keeps only those near it
+                chk.fail(d, sc, "arrangement", d.getOrDefault<word>("arrangement", "random"), "a random fill after the lattice fill " + latticeBefore + " in a decomposed run; put the lattice entries after the random ones, or give this one arrangement lattice");
+            }
+            if (lattice && latticeBefore == "") latticeBefore = e.keyword();
             if
             (
                 type != "list" && Pstream::parRun()

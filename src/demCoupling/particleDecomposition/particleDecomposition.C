@@ -198,6 +198,19 @@ void Foam::particleDecomposition::keepNear(const scalar reach)
         dem_world_set_keep_filter(world_, &keepNearFn, this),
         "dem_world_set_keep_filter"
     );
+    // the box itself for lattice fills (they then compute only the cells
+    // near it); not with periodic axes, where a wrapped image may be kept
+    if (!box_.periodic[0] && !box_.periodic[1] && !box_.periodic[2])
+    {
+        world_.check
+        (
+            dem_world_set_keep_box
+            (
+                world_, nearBox_.min().cdata(), nearBox_.max().cdata()
+            ),
+            "dem_world_set_keep_box"
+        );
+    }
     near_ = true;
 }
 

@@ -271,25 +271,53 @@ void Foam::particleInsertion::addInitialParticles()
             );
             const point lo(region.bounds().min()), hi(region.bounds().max());
             size_t inserted = 0;
-            const dem_status s = dem_world_fill_box
-            (
-                world_, lo.cdata(), hi.cdata(), &insertionRegion::inside,
-                const_cast<insertionRegion*>(&region), size_t(n), &t,
-                &inserted
-            );
+            const bool lattice =
+                d.getOrDefault<word>("arrangement", "random") == "lattice";
+            dem_status s = DEM_OK;
+            if (lattice && type == "box")
+            {
+                s = dem_world_fill_lattice_box
+                (
+                    world_, lo.cdata(), hi.cdata(), size_t(n), &t, &inserted
+                );
+            }
+            else if (lattice)
+            {
+                const point base(d.get<point>("base"));
+                const vector axis(d.get<vector>("axis"));
+                s = dem_world_fill_lattice_cylinder
+                (
+                    world_, base.cdata(), axis.cdata(),
+                    d.get<scalar>("radius"), d.get<scalar>("length"),
+                    size_t(n), &t, &inserted
+                );
+            }
+            else
+            {
+                s = dem_world_fill_box
+                (
+                    world_, lo.cdata(), hi.cdata(), &insertionRegion::inside,
+                    const_cast<insertionRegion*>(&region), size_t(n), &t,
+                    &inserted
+                );
+            }
             if (s == DEM_ERR_FULL)
             {
                 FatalIOErrorInFunction(d)
                     << "initialParticles/" << e.keyword() << " in "
-                    << d.name() << ": only " << label(inserted) << " of "
+                    << d.name() << ": "
+                    << (lattice ? "not all " : "only " + Foam::name(label(inserted)) + " of ")
                     << n << " particles fit into the "
                     << region.describe().c_str()
+                    << (lattice ? " (arrangement lattice: one cubic cell of the largest diameter each; "
+                        + std::string(world_.lastError()) + ")" : std::string())
                     << "; enlarge the region or lower number"
                     << exit(FatalIOError);
             }
-            world_.check(s, "dem_world_fill_box");
+            world_.check(s, lattice ? "dem_world_fill_lattice" : "dem_world_fill_box");
             Info<< "demCoupling: " << e.keyword() << ": " << label(inserted)
-                << " particles in " << region.describe().c_str() << endl;
+                << " particles in " << region.describe().c_str()
+                << (lattice ? " (lattice)" : "") << endl;
         }
         else
         {
