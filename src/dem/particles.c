@@ -293,9 +293,10 @@ dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet)
 dem_status dem_world_remove_unkept(dem_world *w, const unsigned char *keep)
 {
     if (!w) return DEM_ERR_ARG;
-    DEM_NEED(w, keep, "remove_unkept");
     const size_t n = w->n;
-    unsigned char *gone = calloc(n ? n : 1, 1);
+    if (!n) return DEM_OK;  /* nothing to remove; an empty mask may be NULL */
+    DEM_NEED(w, keep, "remove_unkept");
+    unsigned char *gone = calloc(n, 1);
     if (!gone) return DEM_FAIL(w, DEM_ERR_NOMEM, "remove_unkept: mask of %zu particles", n);
     for (size_t i = 0; i < n; ++i) gone[i] = !keep[i];
     /* one pass over the list instead of one per particle (O(n) each) */

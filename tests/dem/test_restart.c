@@ -201,6 +201,14 @@ int main(void)
                "(tol exact, memcmp)\n", ok ? "PASS" : "FAIL", (long long)n2, md);
         if (!ok) check_failures++;
         check_status("remove_unkept without a mask", dem_world_remove_unkept(q, NULL), DEM_ERR_ARG);
+        /* a processor that holds none: an empty mask (NULL from an empty
+           std::vector) is not an error */
+        {
+            dem_world *e = NULL;
+            TRY(e, dem_world_create(&e));
+            check_status("remove_unkept of an empty world without a mask", dem_world_remove_unkept(e, NULL), DEM_OK);
+            dem_world_destroy(&e);
+        }
         free(keep); free(buf);
         dem_world_destroy(&s1); dem_world_destroy(&p); dem_world_destroy(&q);
     }

@@ -182,7 +182,8 @@ dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet);
  *  in the same order, and the pair history between one that goes and one
  *  that stays goes to the pending store (pairs of two that go are dropped).
  *  One pass over the neighbour list: O(n + list), where the repeated calls
- *  cost O(n + list) each (decomposed set-up from a whole state). */
+ *  cost O(n + list) each (decomposed set-up from a whole state). keep may
+ *  be NULL only when the world holds no particles (a processor with none). */
 dem_status dem_world_remove_unkept(dem_world *w, const unsigned char *keep);
 
 /** Added: the caller's per-particle values (dem_arrays.tag): the core never
