@@ -12,7 +12,8 @@ Description
     Why half a skin per pair, and no propagation (docs/parallel.md,
     "Neighbour-only communication"):
     - Ghost sets.  The set q sends p at time T holds every q particle
-      within r_i + r_max + skin of the box of p's centres at T.  While q's
+      within r_i + r_max + skin of one of p's slab boxes at T (slabBoxes:
+      their union holds p's centres).  While q's
       and p's particles each move at most skin/2 from T (each side checks
       its own and asks for a renewal otherwise), no q particle outside the
       set can touch a p particle.  A renewal is also asked when a side's
@@ -94,6 +95,72 @@ namespace
 }
 
 
+namespace
+{
+    // slabs of the owned centres along the longest axis of their box: a
+    // partner's ghosts for this processor are chosen within reach of one
+    // slab's box (docs/parallel.md, "Ghost selection by slabs")
+    const int nSlabs = 16;
+
+    // The boxes a partner selects ghosts by, as [count, lo, hi, lo, hi...]:
+    // the owned centres cut into nSlabs slabs of equal thickness along the
+    // longest axis of their box (lo, hi), each slab's box of its centres
+    // (empty slabs left out), then the inlets' boxes.  Their union holds
+    // every owned centre, so a particle within reach of none of them
+    // cannot touch one here
+    std::vector<double> slabBoxes
+    (
+        const dem_arrays& a,
+        const Foam::label n,
+        const double lo[3],
+        const double hi[3],
+        const Foam::List<Foam::boundBox>& inlets
+    )
+    {
+        int axis = 0;
+        for (int k = 1; k < 3; ++k)
+        {
+            if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+        }
+        const double L = hi[axis] - lo[axis];
+        std::vector<double> box(6*nSlabs);
+        for (int s = 0; s < nSlabs; ++s)
+        {
+            for (int k = 0; k < 3; ++k)
+            {
+                box[6*s + k] = Foam::GREAT;
+                box[6*s + 3 + k] = -Foam::GREAT;
+            }
+        }
+        for (Foam::label i = 0; i < n; ++i)
+        {
+            const double* x = a.x + 3*i;
+            int s = L > 0 ? int((x[axis] - lo[axis])/L*nSlabs) : 0;
+            s = s < 0 ? 0 : (s >= nSlabs ? nSlabs - 1 : s);
+            double* b = box.data() + 6*s;
+            for (int k = 0; k < 3; ++k)
+            {
+                b[k] = x[k] < b[k] ? x[k] : b[k];
+                b[3 + k] = x[k] > b[3 + k] ? x[k] : b[3 + k];
+            }
+        }
+        std::vector<double> out(1, 0);
+        for (int s = 0; s < nSlabs; ++s)
+        {
+            if (box[6*s] > box[6*s + 3]) continue;
+            out.insert(out.end(), &box[6*s], &box[6*s] + 6);
+        }
+        for (const Foam::boundBox& bb : inlets)
+        {
+            for (int k = 0; k < 3; ++k) out.push_back(bb.min()[k]);
+            for (int k = 0; k < 3; ++k) out.push_back(bb.max()[k]);
+        }
+        out[0] = double((out.size() - 1)/6);
+        return out;
+    }
+}
+
+
 // * * * * * * * * * * * * * * * * Constructor * * * * * * * * * * * * * * //
 
 Foam::processorGhosts::processorGhosts
@@ -149,9 +216,11 @@ Foam::processorGhosts::processorGhosts
 
 namespace
 {
-    // message tags of the per-step header and of a renewed ghost set
+    // message tags of the per-step header, of a renewed ghost set and of
+    // the boxes a renewal selects by
     const int tagHeader = 7301;
     const int tagSet = 7302;
+    const int tagBoxes = 7303;
 
     // header: flags, box of owned centres (lo, hi), largest radius, skin
     const int headerSize = 9;
@@ -615,8 +684,49 @@ bool Foam::processorGhosts::talk
     bool anyRenew = false;
     for (const char b : renew) anyRenew = anyRenew || b;
     List<std::vector<char>> sets(np);
+    List<std::vector<double>> boxesOut(np);
     if (anyRenew)
     {
+        // the slab boxes of the owned centres to each renewing partner,
+        // theirs from it
+        const double lo[3] = {hdr[1], hdr[2], hdr[3]};
+        const double hi[3] = {hdr[4], hdr[5], hdr[6]};
+        const std::vector<double> mySlabs =
+            slabBoxes(a, n, lo, hi, inletBoxes_);
+        for (label k = 0; k < np; ++k)
+        {
+            if (!renew[k]) continue;
+            boxesOut[k] = mySlabs;
+            sendBytes
+            (
+                partners_[k], tagBoxes,
+                reinterpret_cast<const char*>(boxesOut[k].data()),
+                boxesOut[k].size()*sizeof(double)
+            );
+        }
+        List<std::vector<double>> theirBoxes(np);
+        for (label k = 0; k < np; ++k)
+        {
+            if (!renew[k]) continue;
+            const auto w0 = std::chrono::steady_clock::now();
+            receiveBytes(partners_[k], tagBoxes, buf);
+            counts_.wait += std::chrono::duration<double>
+            (
+                std::chrono::steady_clock::now() - w0
+            ).count();
+            const size_t nd = size_t(buf.size())/sizeof(double);
+            const double* in = reinterpret_cast<const double*>(buf.cdata());
+            if (nd < 1 || nd != size_t(1 + 6*label(in[0])))
+            {
+                FatalErrorInFunction
+                    << "the DEM slab boxes from processor " << partners_[k]
+                    << " hold " << label(nd) << " values, which do not "
+                    << "match their count; please report this"
+                    << exit(FatalError);
+            }
+            theirBoxes[k].assign(in + 1, in + nd);
+        }
+
         // the partners that keep their sets: their indices in this order
         // (the renewed ones' below are in it too; after a restore only
         // renewals happen, and the tags are gone)
@@ -645,9 +755,16 @@ bool Foam::processorGhosts::talk
             const scalar rPair = max(rMax, b[7]);
             std::vector<char>& o = sets[k];
             DynamicList<label>& chosen = sendIdx_[k];   // cleared above
-            for (label i = 0; i < n; ++i)
+            const std::vector<double>& slabs = theirBoxes[k];
+            const label nb = label(slabs.size()/6);
+            // squared distance of particle i to box [lo, hi], stopping
+            // once beyond reach
+            auto gap2 = [&]
+            (
+                const label i, const double* lo, const double* hi,
+                const scalar reach
+            )
             {
-                const scalar reach = a.radius[i] + rPair + skin0_;
                 scalar d2 = 0;
                 for (direction c = 0; c < 3 && d2 < sqr(reach); ++c)
                 {
@@ -655,12 +772,25 @@ bool Foam::processorGhosts::talk
                     (
                         axisGap
                         (
-                            a.x[3*i + c], b[1 + c], b[4 + c], periodic_[c],
+                            a.x[3*i + c], lo[c], hi[c], periodic_[c],
                             boxHi_[c] - boxLo_[c]
                         )
                     );
                 }
-                if (d2 >= sqr(reach)) continue;
+                return d2;
+            };
+            for (label i = 0; i < n; ++i)
+            {
+                const scalar reach = a.radius[i] + rPair + skin0_;
+                // within reach of the partner's box, then of one slab
+                if (gap2(i, &b[1], &b[4], reach) >= sqr(reach)) continue;
+                bool near = false;
+                for (label j = 0; j < nb && !near; ++j)
+                {
+                    const double* sb = slabs.data() + 6*j;
+                    near = gap2(i, sb, sb + 3, reach) < sqr(reach);
+                }
+                if (!near) continue;
                 sendIds_[k].append(a.id[i]);
                 chosen.append(i);
             }
