@@ -74,12 +74,38 @@ static dem_status setup_grid(dem_world *w)
             return DEM_FAIL(w, DEM_ERR_RANGE, "periodic axis %d: period %g must exceed twice the "
                             "neighbour cutoff 2 a_max + skin = %g", k, L, w->cutoff);
     }
+    /* The grid spans the box of the particle centres (owned and ghosts)
+       clipped to the domain on open axes, and the domain on periodic ones:
+       its cells are then no larger than the cutoff for the particles
+       present, also on a processor that holds a small part of a large
+       domain (docs/demCore.md, "Neighbour list").  Centres outside fall
+       into the boundary cells. */
+    double glen[3];
+    for (int k = 0; k < 3; ++k) { w->plo[k] = HUGE_VAL; w->phi[k] = -HUGE_VAL; }
+    for (size_t i = 0; i < np; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const double x = w->x[3 * i + k];
+            w->plo[k] = x < w->plo[k] ? x : w->plo[k];
+            w->phi[k] = x > w->phi[k] ? x : w->phi[k];
+        }
+    for (int k = 0; k < 3; ++k) {
+        const double dlo = w->cfg.domain_lo[k], dhi = w->cfg.domain_hi[k];
+        if (w->cfg.periodic[k] || np == 0) {
+            w->glo[k] = dlo;
+            glen[k] = dhi - dlo;
+            continue;
+        }
+        double lo = w->plo[k] < dlo ? dlo : (w->plo[k] > dhi ? dhi : w->plo[k]);
+        double hi = w->phi[k] < dlo ? dlo : (w->phi[k] > dhi ? dhi : w->phi[k]);
+        w->glo[k] = lo;
+        glen[k] = hi - lo > w->cutoff ? hi - lo : w->cutoff;
+    }
     double cs = w->cutoff;
     double limit = 8.0 * (double)np + 4096.0;
     for (;;) {
         double prod = 1;
         for (int k = 0; k < 3; ++k) {
-            double L = w->cfg.domain_hi[k] - w->cfg.domain_lo[k];
+            double L = glen[k];
             double m = floor(L / cs);
             if (m < 1) m = 1;
             if (m > 1e6) m = 1e6;
@@ -132,6 +158,12 @@ dem_status dem_bin_triangles(dem_world *w)
                 lo[k] = fmin(P[0][k], fmin(P[1][k], P[2][k])) - margin;
                 hi[k] = fmax(P[0][k], fmax(P[1][k], P[2][k])) + margin;
             }
+            /* no particle centre within the margin of this triangle: it
+               cannot be a wall candidate at this build */
+            int away = 0;
+            for (int k = 0; k < 3; ++k)
+                away |= !w->cfg.periodic[k] && (lo[k] > w->phi[k] || hi[k] < w->plo[k]);
+            if (away) continue;
             int clo[3], chi[3];
             dem_cell_coords(w, lo, clo);
             dem_cell_coords(w, hi, chi);
@@ -140,9 +172,9 @@ dem_status dem_bin_triangles(dem_world *w)
             for (int cz = clo[2]; cz <= chi[2]; ++cz)
                 for (int cy = clo[1]; cy <= chi[1]; ++cy)
                     for (int cx = clo[0]; cx <= chi[0]; ++cx) {
-                        double cc[3] = {w->cfg.domain_lo[0] + (cx + 0.5) * w->cs[0],
-                                        w->cfg.domain_lo[1] + (cy + 0.5) * w->cs[1],
-                                        w->cfg.domain_lo[2] + (cz + 0.5) * w->cs[2]};
+                        double cc[3] = {w->glo[0] + (cx + 0.5) * w->cs[0],
+                                        w->glo[1] + (cy + 0.5) * w->cs[1],
+                                        w->glo[2] + (cz + 0.5) * w->cs[2]};
                         /* clamped boundary cells hold everything outside: keep them */
                         int edge = cx == 0 || cy == 0 || cz == 0 || cx == w->nc[0] - 1 ||
                                    cy == w->nc[1] - 1 || cz == w->nc[2] - 1;

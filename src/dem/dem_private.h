@@ -164,6 +164,8 @@ struct dem_world {
 
     /* neighbour grid */
     int nc[3]; double cs[3]; double cutoff, skin, amax;
+    double glo[3];           /* grid origin: the particles' box on open axes, the domain on periodic ones */
+    double plo[3], phi[3];   /* the box of the particle centres at the build (triangle binning) */
     size_t ncells, capcells;
     int *cell_start;         /* ncells + 1 */
     int *cell_item;          /* particle per slot */

@@ -24,7 +24,7 @@
 static inline void dem_cell_coords(const dem_world *w, const double *x, int c[3])
 {
     for (int k = 0; k < 3; ++k) {
-        double q = floor((x[k] - w->cfg.domain_lo[k]) / w->cs[k]);
+        double q = floor((x[k] - w->glo[k]) / w->cs[k]);
         c[k] = q >= 0 ? (q < w->nc[k] ? (int)q : w->nc[k] - 1) : 0;
     }
 }
