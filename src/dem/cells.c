@@ -78,7 +78,7 @@ static dem_status setup_grid(dem_world *w)
        clipped to the domain on open axes, and the domain on periodic ones:
        its cells are then no larger than the cutoff for the particles
        present, also on a processor that holds a small part of a large
-       domain (docs/demCore.md, "Neighbour list").  Centres outside fall
+       domain (docs/demCore.md, "Neighbour search and contact history").  Centres outside fall
        into the boundary cells. */
     double glen[3];
     for (int k = 0; k < 3; ++k) { w->plo[k] = HUGE_VAL; w->phi[k] = -HUGE_VAL; }

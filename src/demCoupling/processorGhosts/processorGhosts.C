@@ -627,14 +627,20 @@ bool Foam::processorGhosts::talk
     List<std::vector<double>> states(np);
     bool partnerDead = false;
     DynamicList<char> buf;
-    for (label k = 0; k < np; ++k)
+    // the next message with tag from partner k into buf, the time blocked
+    // added to the counts
+    auto receiveTimed = [&](const label k, const int tag)
     {
         const auto w0 = std::chrono::steady_clock::now();
-        receiveBytes(partners_[k], tagHeader, buf);
+        receiveBytes(partners_[k], tag, buf);
         counts_.wait += std::chrono::duration<double>
         (
             std::chrono::steady_clock::now() - w0
         ).count();
+    };
+    for (label k = 0; k < np; ++k)
+    {
+        receiveTimed(k, tagHeader);
         const size_t nd = size_t(buf.size())/sizeof(double);
         const double* in = reinterpret_cast<const double*>(buf.cdata());
         if (nd < size_t(headerSize))
@@ -684,36 +690,30 @@ bool Foam::processorGhosts::talk
     bool anyRenew = false;
     for (const char b : renew) anyRenew = anyRenew || b;
     List<std::vector<char>> sets(np);
-    List<std::vector<double>> boxesOut(np);
+    // the slab boxes of the owned centres, one buffer sent to every
+    // renewing partner (kept until the sends complete)
+    std::vector<double> mySlabs;
     if (anyRenew)
     {
-        // the slab boxes of the owned centres to each renewing partner,
-        // theirs from it
+        // the slab boxes to each renewing partner, theirs from it
         const double lo[3] = {hdr[1], hdr[2], hdr[3]};
         const double hi[3] = {hdr[4], hdr[5], hdr[6]};
-        const std::vector<double> mySlabs =
-            slabBoxes(a, n, lo, hi, inletBoxes_);
+        mySlabs = slabBoxes(a, n, lo, hi, inletBoxes_);
         for (label k = 0; k < np; ++k)
         {
             if (!renew[k]) continue;
-            boxesOut[k] = mySlabs;
             sendBytes
             (
                 partners_[k], tagBoxes,
-                reinterpret_cast<const char*>(boxesOut[k].data()),
-                boxesOut[k].size()*sizeof(double)
+                reinterpret_cast<const char*>(mySlabs.data()),
+                mySlabs.size()*sizeof(double)
             );
         }
         List<std::vector<double>> theirBoxes(np);
         for (label k = 0; k < np; ++k)
         {
             if (!renew[k]) continue;
-            const auto w0 = std::chrono::steady_clock::now();
-            receiveBytes(partners_[k], tagBoxes, buf);
-            counts_.wait += std::chrono::duration<double>
-            (
-                std::chrono::steady_clock::now() - w0
-            ).count();
+            receiveTimed(k, tagBoxes);
             const size_t nd = size_t(buf.size())/sizeof(double);
             const double* in = reinterpret_cast<const double*>(buf.cdata());
             if (nd < 1 || nd != size_t(1 + 6*label(in[0])))
@@ -817,12 +817,7 @@ bool Foam::processorGhosts::talk
         for (label k = 0; k < np; ++k)
         {
             if (!renew[k]) continue;
-            const auto w0 = std::chrono::steady_clock::now();
-            receiveBytes(partners_[k], tagSet, buf);
-            counts_.wait += std::chrono::duration<double>
-            (
-                std::chrono::steady_clock::now() - w0
-            ).count();
+            receiveTimed(k, tagSet);
             recvSet_[k].assign(buf.cdata(), buf.cdata() + buf.size());
             int64_t pre[2] = {0, 0};
             if (recvSet_[k].size() >= sizeof pre)
