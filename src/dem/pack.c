@@ -131,10 +131,14 @@ static dem_status pack_many(const dem_world *w, const size_t *idx, size_t m, voi
         }
         if (!lists) continue;
         for (size_t r = 0; r < w->nrows; ++r) {
+            const int rowPacked = slot[r] >= 0;
             for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
+                /* the partner's slot before the history: most pairs have
+                   neither side packed, and nb_j is a sixth of nb_h's bytes */
+                const int j = w->nb_j[k];
+                if (!rowPacked && slot[j] < 0) continue;
                 const double *h = w->nb_h + 3 * (size_t)k;
                 if (!dem_history_nonzero(h)) continue;
-                const int j = w->nb_j[k];
                 /* as seen from r (partner j), then as seen from j (partner r) */
                 for (int side = 0; side < 2; ++side) {
                     const int q = side ? slot[j] : slot[r], po = OWNER(side ? (int)r : j);

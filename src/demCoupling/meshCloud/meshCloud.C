@@ -104,7 +104,7 @@ void Foam::meshCloud::locate(std::string& failure)
         int64_t& host = a.tag[hostTag][i];
         label exitFace = -1;
         const label c =
-            locator_.locate(box_.wrapped(a.x, i), label(host), exitFace);
+            locator_.locateOrCross(box_.wrapped(a.x, i), label(host), exitFace);
         host = c;
         if (c < 0)
         {
@@ -116,11 +116,11 @@ void Foam::meshCloud::locate(std::string& failure)
     // decomposed: those in another processor's cells move there
     // (and the patch those that left through a processor face then left
     // the domain by on the other side)
-    boolList taken(leaving.size(), false);
+    boolList taken(leaving.size(), false), stays(leaving.size(), false);
     labelList exitPatch(leaving.size(), -1);
     if (Pstream::parRun())
     {
-        decomposition_.migrate(leaving, leavingFace, taken, exitPatch);
+        decomposition_.migrate(leaving, leavingFace, taken, stays, exitPatch);
         a = world_.arrays();
     }
 
@@ -128,6 +128,10 @@ void Foam::meshCloud::locate(std::string& failure)
     label nOut = 0, nLost = 0;
     for (label k = leaving.size() - 1; k >= 0; --k)
     {
+        if (stays[k])
+        {
+            continue;
+        }
         if (taken[k])
         {
             world_.check

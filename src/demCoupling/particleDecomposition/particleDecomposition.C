@@ -40,6 +40,7 @@ Description
 #include "particleDecomposition.H"
 #include "processorPolyPatch.H"
 #include "OSspecific.H"
+#include <array>
 #include <chrono>
 #include <cstring>
 #include <unordered_map>
@@ -370,16 +371,16 @@ Foam::label Foam::particleDecomposition::moveToOwners()
     {
         int64_t& host = a.tag[hostTag][i];
         label f = -1;
-        host = locator_.locate(box_.wrapped(a.x, i), label(host), f);
+        host = locator_.locateOrCross(box_.wrapped(a.x, i), label(host), f);
         if (host < 0)
         {
             leaving.append(i);
             exitFace.append(f);
         }
     }
-    boolList taken;
+    boolList taken, stays;
     labelList exitPatch;
-    migrate(leaving, exitFace, taken, exitPatch);
+    migrate(leaving, exitFace, taken, stays, exitPatch);
     // from the highest index down (removal swaps with the last)
     label given = 0;
     for (label k = leaving.size() - 1; k >= 0; --k)
@@ -398,41 +399,61 @@ Foam::label Foam::particleDecomposition::moveToOwners()
 }
 
 
-Foam::label Foam::particleDecomposition::patchBeyond
+Foam::label Foam::particleDecomposition::offeredCell
 (
     const label from,
+    const label patchFace,
     const point& faceCentre,
-    const point& p
+    const point& p,
+    label& beyond
 ) const
 {
-    // the face of this processor's patch to processor `from` at that centre
+    beyond = -1;
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
-    label seed = -1;
-    scalar best = GREAT, tol = 0;
-    for (const polyPatch& pp : pbm)
+    label exitFace = -1;
+    if (patchFace >= 0)
     {
-        if (!pp.size() || locator_.processorBehind(pp.start()) != from) continue;
-        forAll(pp, i)
+        // the patches of a processor pair list their common faces in the
+        // same order on both sides
+        label seed = -1;
+        for (const polyPatch& pp : pbm)
         {
-            const scalar d = magSqr(pp.faceCentres()[i] - faceCentre);
-            if (d < best)
+            if
+            (
+                pp.size() && locator_.processorBehind(pp.start()) == from
+             && patchFace < pp.size()
+             && magSqr(pp.faceCentres()[patchFace] - faceCentre)
+             <= 1e-12*mag(pp.faceAreas()[patchFace])
+            )
             {
-                best = d;
-                seed = pp.faceCells()[i];
-                // the same face: its centre within 1e-6 of its size
-                tol = 1e-12*mag(pp.faceAreas()[i]);
+                seed = pp.faceCells()[patchFace];
+                break;
             }
         }
+        if (seed < 0)
+        {
+            FatalErrorInFunction
+                << "processor " << from << " sent a particle through face "
+                << patchFace << " of its patch to processor "
+                << Pstream::myProcNo() << " at " << faceCentre
+                << ", which is no face of this processor's patch to it;"
+                << " please report this" << exit(FatalError);
+        }
+        const label c = locator_.locate(p, seed, exitFace, false);
+        if (c >= 0)
+        {
+            return c;
+        }
     }
-    if (seed < 0 || best > tol) return -1;
-    // walk on from there (no global search: p is in no cell here)
-    label exitFace = -1;
-    if (locator_.locate(p, seed, exitFace, false) >= 0 || exitFace < 0)
+    // not found from the face (a non-convex cell, or a point beyond a
+    // boundary that the mesh holds elsewhere) or not crossed to here
+    label f = -1;
+    const label c = locator_.locate(p, -1, f);
+    if (c < 0 && exitFace >= 0 && locator_.processorBehind(exitFace) < 0)
     {
-        return -1;
+        beyond = pbm.whichPatch(exitFace);
     }
-    const label patchi = pbm.whichPatch(exitFace);
-    return isA<processorPolyPatch>(pbm[patchi]) ? -1 : patchi;
+    return c;
 }
 
 
@@ -441,12 +462,15 @@ void Foam::particleDecomposition::migrate
     const DynamicList<label>& leaving,
     const DynamicList<label>& exitFace,
     boolList& taken,
+    boolList& stays,
     labelList& exitPatch
 )
 {
     const auto t0 = std::chrono::steady_clock::now();
     taken.setSize(leaving.size());
     taken = false;
+    stays.setSize(leaving.size());
+    stays = false;
     exitPatch.setSize(leaving.size());
     exitPatch = -1;
 
@@ -475,6 +499,9 @@ void Foam::particleDecomposition::migrate
     // the centre of the processor face the walk left through (else a
     // point no face has)
     List<point> through(leaving.size(), point::max);
+    // the processor behind that face and the face's index in the patch to
+    // it (-1, -1 if none)
+    List<std::array<int64_t, 2>> crossed(leaving.size(), {{-1, -1}});
     // all of them in one pass over the neighbour list (docs/demCore.md)
     std::vector<size_t> sz(leaving.size());
     {
@@ -502,9 +529,14 @@ void Foam::particleDecomposition::migrate
     {
         sizes[k] = label(sz[k]);
         where[k] = box_.wrapped(a.x, leaving[k]);
-        if (exitFace[k] >= 0 && locator_.processorBehind(exitFace[k]) >= 0)
+        const label behind =
+            exitFace[k] >= 0 ? locator_.processorBehind(exitFace[k]) : -1;
+        if (behind >= 0)
         {
             through[k] = mesh_.faceCentres()[exitFace[k]];
+            const polyPatch& pp =
+                mesh_.boundaryMesh()[mesh_.boundaryMesh().whichPatch(exitFace[k])];
+            crossed[k] = {{behind, exitFace[k] - pp.start()}};
         }
     }
     // to every DEM partner only: a particle that left this processor's
@@ -529,8 +561,9 @@ void Foam::particleDecomposition::migrate
     };
     const label req0 = UPstream::nRequests();
 
-    // the offer: count, sizes, where and through (6 doubles), the packed
-    // particles
+    // the offer: count, sizes, where and through (6 doubles), the
+    // processor behind the face crossed and its index in the patch to it
+    // (2 int64), the packed particles
     std::vector<char> offer;
     {
         const int64_t cnt = nOut;
@@ -548,6 +581,10 @@ void Foam::particleDecomposition::migrate
                 through[k].x(), through[k].y(), through[k].z()
             };
             put(offer, wt, sizeof wt);
+        }
+        forAll(leaving, k)
+        {
+            put(offer, crossed[k].data(), sizeof crossed[k]);
         }
         put(offer, out.data(), out.size());
     }
@@ -573,19 +610,22 @@ void Foam::particleDecomposition::migrate
         std::vector<double> wt(6*size_t(cnt));
         std::memcpy(wt.data(), c, wt.size()*sizeof(double));
         c += wt.size()*sizeof(double);
+        std::vector<int64_t> cr(2*size_t(cnt));
+        std::memcpy(cr.data(), c, cr.size()*sizeof(int64_t));
+        c += cr.size()*sizeof(int64_t);
         in[k].assign(c, buf.cdata() + buf.size());
         inCell[k].setSize(label(cnt), -1);
         for (int64_t j = 0; j < cnt; ++j)
         {
             const point inWhere(wt[6*j], wt[6*j + 1], wt[6*j + 2]);
             const point inThrough(wt[6*j + 3], wt[6*j + 4], wt[6*j + 5]);
-            label exitFace = -1;
-            inCell[k][j] = locator_.locate(inWhere, -1, exitFace);
-            int64_t ans[2] = {inCell[k][j] >= 0, -1};
-            if (ans[0] == 0 && inThrough != point::max)
-            {
-                ans[1] = patchBeyond(r, inThrough, inWhere);
-            }
+            const bool toMe = cr[2*j] == Pstream::myProcNo();
+            label beyond = -1;
+            inCell[k][j] = offeredCell
+            (
+                r, toMe ? label(cr[2*j + 1]) : -1, inThrough, inWhere, beyond
+            );
+            const int64_t ans[2] = {inCell[k][j] >= 0, beyond};
             put(answer[k], ans, sizeof ans);
         }
         send(r, tagAnswer, answer[k]);
@@ -653,6 +693,23 @@ void Foam::particleDecomposition::migrate
         }
     }
     UPstream::waitRequests(req0);
+
+    // those left through a processor face that no partner took: searched
+    // for here (locateOrCross skipped it), e.g. around a corner of the cut
+    {
+        const dem_arrays b = world_.arrays();
+        forAll(leaving, j)
+        {
+            if (taken[j] || crossed[j][0] < 0) continue;
+            label f = -1;
+            const label c = locator_.locate(where[j], -1, f);
+            if (c >= 0)
+            {
+                stays[j] = true;
+                b.tag[hostTag][leaving[j]] = c;
+            }
+        }
+    }
     tComm_ += std::chrono::duration<scalar>
     (
         std::chrono::steady_clock::now() - t0

@@ -61,45 +61,49 @@ Foam::label Foam::particleLocator::exitFace
 }
 
 
-Foam::label Foam::particleLocator::locate
+Foam::label Foam::particleLocator::walk
 (
     const point& p,
-    const label seed,
-    label& exitFacei,
-    const bool global
+    label& celli,
+    label& exitFacei
 ) const
 {
     exitFacei = -1;
-    label celli = seed;
-    if (celli >= 0 && celli < mesh_.nCells())
-    {
-        ++nWalk_;
-        for (label step = 0; step < maxWalk_; ++step)
-        {
-            scalar dist;
-            const label facei = exitFace(p, celli, dist);
-            if (facei < 0)
-            {
-                return celli;
-            }
-            if (mesh_.isInternalFace(facei))
-            {
-                const label own = mesh_.faceOwner()[facei];
-                celli = (own == celli ? mesh_.faceNeighbour()[facei] : own);
-            }
-            else
-            {
-                exitFacei = facei;
-                break;
-            }
-        }
-    }
-
-    if (!global && seed >= 0)
+    if (celli < 0 || celli >= mesh_.nCells())
     {
         return -1;
     }
+    ++nWalk_;
+    for (label step = 0; step < maxWalk_; ++step)
+    {
+        scalar dist;
+        const label facei = exitFace(p, celli, dist);
+        if (facei < 0)
+        {
+            return celli;
+        }
+        if (mesh_.isInternalFace(facei))
+        {
+            const label own = mesh_.faceOwner()[facei];
+            celli = (own == celli ? mesh_.faceNeighbour()[facei] : own);
+        }
+        else
+        {
+            exitFacei = facei;
+            break;
+        }
+    }
+    return -1;
+}
 
+
+Foam::label Foam::particleLocator::search
+(
+    const point& p,
+    const label lastCell,
+    label& exitFacei
+) const
+{
     ++nGlobal_;
     const label found = mesh_.findCell(p);
     if (found >= 0)
@@ -108,10 +112,10 @@ Foam::label Foam::particleLocator::locate
         return found;
     }
 
-    if (exitFacei < 0 && celli >= 0 && celli < mesh_.nCells())
+    if (exitFacei < 0 && lastCell >= 0 && lastCell < mesh_.nCells())
     {
         // the boundary face of the last cell that p lies furthest beyond
-        const cell& c = mesh_.cells()[celli];
+        const cell& c = mesh_.cells()[lastCell];
         scalar best = -GREAT;
         forAll(c, i)
         {
@@ -129,4 +133,39 @@ Foam::label Foam::particleLocator::locate
         }
     }
     return -1;
+}
+
+
+Foam::label Foam::particleLocator::locate
+(
+    const point& p,
+    const label seed,
+    label& exitFacei,
+    const bool global
+) const
+{
+    label celli = seed;
+    const label found = walk(p, celli, exitFacei);
+    if (found >= 0 || (!global && seed >= 0))
+    {
+        return found;
+    }
+    return search(p, celli, exitFacei);
+}
+
+
+Foam::label Foam::particleLocator::locateOrCross
+(
+    const point& p,
+    const label seed,
+    label& exitFacei
+) const
+{
+    label celli = seed;
+    const label found = walk(p, celli, exitFacei);
+    if (found >= 0 || (exitFacei >= 0 && processorBehind(exitFacei) >= 0))
+    {
+        return found;
+    }
+    return search(p, celli, exitFacei);
 }
