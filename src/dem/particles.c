@@ -310,6 +310,50 @@ dem_status dem_world_remove_unkept(dem_world *w, const unsigned char *keep)
     return DEM_OK;
 }
 
+dem_status dem_world_remove_particles(dem_world *w, const size_t *index, const int *outlet, size_t m)
+{
+    if (!w) return DEM_ERR_ARG;
+    if (!m) return DEM_OK;
+    DEM_NEED(w, index, "remove_particles");
+    const size_t n = w->n;
+    /* per owned particle: 0 stays, 1 goes without an outlet, 2 + k on outlet k */
+    int *how = calloc(n ? n : 1, sizeof *how);
+    unsigned char *gone = calloc(n ? n : 1, 1);
+    dem_status st = DEM_OK;
+    if (!how || !gone) { st = DEM_FAIL(w, DEM_ERR_NOMEM, "remove_particles: masks of %zu particles", n); goto out; }
+    for (size_t q = 0; q < m; ++q) {
+        const size_t i = index[q];
+        const int o = outlet ? outlet[q] : -1;
+        if (i >= n) {
+            st = DEM_FAIL(w, DEM_ERR_RANGE, "remove_particles: index[%zu] = %zu; allowed 0..%zu (%zu owned "
+                          "particles)", q, i, n ? n - 1 : 0, n);
+            goto out;
+        }
+        if (o >= w->noutlets || o < -1) {
+            st = DEM_FAIL(w, DEM_ERR_NOTFOUND, "remove_particles: outlet[%zu] = %d; allowed -1 (none) or 0..%d "
+                          "(%d outlets defined)", q, o, w->noutlets - 1, w->noutlets);
+            goto out;
+        }
+        if (how[i]) {
+            st = DEM_FAIL(w, DEM_ERR_ARG, "remove_particles: index %zu given twice (index[%zu]); each particle "
+                          "once", i, q);
+            goto out;
+        }
+        how[i] = o < 0 ? 1 : 2 + o;
+        gone[i] = o < 0;
+    }
+    /* one pass over the list for the ones without an outlet */
+    if ((st = dem_history_to_pending(w, -1, gone, "remove_particles"))) goto out;
+    for (size_t i = n; i-- > 0;) {
+        if (!how[i]) continue;
+        if ((st = dem_remove_booked(w, i, how[i] - 2))) goto out;
+    }
+out:
+    free(how);
+    free(gone);
+    return st;
+}
+
 dem_status dem_world_arrays(dem_world *w, dem_arrays *a)
 {
     if (!w) return DEM_ERR_ARG;

@@ -213,6 +213,67 @@ int main(void)
         dem_world_destroy(&s1); dem_world_destroy(&p); dem_world_destroy(&q);
     }
 
+    /* dem_world_remove_particles (one call, indices in any order, some
+       booked on outlet 0, some on none) against repeated remove_particle
+       from the highest index down: the same particles in the same order,
+       the same outlet books, and the same run after it */
+    {
+        dem_world *s1 = setup();
+        TRY(s1, dem_world_step(s1, n1));
+        void *buf;
+        size_t nb = state_bytes(s1, &buf);
+        dem_world *p = NULL, *q = NULL;
+        TRY(p, dem_world_create(&p));
+        TRY(q, dem_world_create(&q));
+        TRY(p, dem_world_restore_memory(p, buf, nb));
+        TRY(q, dem_world_restore_memory(q, buf, nb));
+        const size_t n = dem_world_count(p);
+        size_t *idx = malloc(n * sizeof *idx), m = 0;
+        int *out = malloc(n * sizeof *out);
+        /* ascending, then listed odd positions first (any order is allowed) */
+        for (size_t i = 0; i < n; ++i)
+            if (i % 5 == 2 || i % 11 == 0) { idx[m] = i; out[m] = i % 2 ? 0 : -1; ++m; }
+        for (size_t i = n; i-- > 0;)
+            for (size_t k = 0; k < m; ++k)
+                if (idx[k] == i) TRY(p, dem_world_remove_particle(p, i, out[k]));
+        for (size_t k = 0; k + 1 < m; k += 2) {
+            size_t t = idx[k]; idx[k] = idx[k + 1]; idx[k + 1] = t;
+            int o = out[k]; out[k] = out[k + 1]; out[k + 1] = o;
+        }
+        TRY(q, dem_world_remove_particles(q, idx, out, m));
+        double md;
+        int ok = same(p, q, &md) && dem_world_count(q) + m == n;
+        printf("%s: remove_particles vs remove_particle from the top: the same %zu of %zu particles in the same order: "
+               "max |dx|+|dv| %g vs 0 (tol exact, memcmp)\n", ok ? "PASS" : "FAIL", dem_world_count(q), n, md);
+        if (!ok) check_failures++;
+        int64_t cp, cq; double mp, mq;
+        TRY(p, dem_world_outlet_totals(p, 0, &cp, &mp));
+        TRY(q, dem_world_outlet_totals(q, 0, &cq, &mq));
+        check_abs("remove_particles: outlet 0 count as the repeated calls'", (double)cq, (double)cp, 0.0);
+        check_abs("remove_particles: outlet 0 mass as the repeated calls'", mq, mp, 0.0);
+        check_below("remove_particles: some booked on outlet 0", 1.0 - (double)cq, 0.0);
+        TRY(p, dem_world_step(p, n2));
+        TRY(q, dem_world_step(q, n2));
+        ok = same(p, q, &md);
+        printf("%s: remove_particles vs remove_particle from the top, %lld steps on: max |dx|+|dv| %g vs 0 "
+               "(tol exact, memcmp)\n", ok ? "PASS" : "FAIL", (long long)n2, md);
+        if (!ok) check_failures++;
+        const size_t twice[2] = {0, 0}, beyond[1] = {dem_world_count(q)};
+        const int badOutlet[1] = {7};
+        check_status("remove_particles: an index given twice", dem_world_remove_particles(q, twice, NULL, 2),
+                     DEM_ERR_ARG);
+        check_status("remove_particles: an index beyond the owned", dem_world_remove_particles(q, beyond, NULL, 1),
+                     DEM_ERR_RANGE);
+        check_status("remove_particles: an outlet not defined", dem_world_remove_particles(q, twice, badOutlet, 1),
+                     DEM_ERR_NOTFOUND);
+        check_status("remove_particles: none (m = 0, no index array)", dem_world_remove_particles(q, NULL, NULL, 0),
+                     DEM_OK);
+        check_abs("remove_particles: refused calls removed nothing", (double)dem_world_count(q),
+                  (double)dem_world_count(p), 0.0);
+        free(idx); free(out); free(buf);
+        dem_world_destroy(&s1); dem_world_destroy(&p); dem_world_destroy(&q);
+    }
+
     /* in-memory checkpoint (demFoam's last good state): save after n1 steps,
        run on by n2/2 steps, go back and run n2: bit-identical to a; a
        truncated buffer is refused and leaves the world as it was */

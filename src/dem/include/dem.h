@@ -185,6 +185,15 @@ dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet);
  *  cost O(n + list) each (decomposed set-up from a whole state). keep may
  *  be NULL only when the world holds no particles (a processor with none). */
 dem_status dem_world_remove_unkept(dem_world *w, const unsigned char *keep);
+/** Added: remove the m owned particles index[0..m-1] (each once, any order),
+ *  particle index[q] booked on outlet[q] (-1: none, as in
+ *  dem_world_remove_particle), from the highest index down: the particles
+ *  that stay end in the same order as after the repeated calls, and the
+ *  pair history between one removed without an outlet and one that stays
+ *  goes to the pending store.  One pass over the neighbour list for all m
+ *  (the repeated calls cost one each): the migration and outlets of a
+ *  fluid step.  outlet may be NULL (none for all). */
+dem_status dem_world_remove_particles(dem_world *w, const size_t *index, const int *outlet, size_t m);
 
 /** Added: the caller's per-particle values (dem_arrays.tag): the core never
  *  reads them; a particle keeps its tags through re-sorts, removals' swaps

@@ -16,6 +16,7 @@ Description
 #include "OStringStream.H"
 #include "OSspecific.H"
 #include <fstream>
+#include <vector>
 
 using namespace Foam::demTools;
 
@@ -124,7 +125,10 @@ void Foam::meshCloud::locate(std::string& failure)
         a = world_.arrays();
     }
 
-    // remove from the highest index down (removal swaps with the last)
+    // removed in one call (one pass over the neighbour list for all of
+    // them; as repeated removals from the highest index down)
+    std::vector<size_t> gone;
+    std::vector<int> goneOutlet;
     label nOut = 0, nLost = 0;
     for (label k = leaving.size() - 1; k >= 0; --k)
     {
@@ -132,13 +136,10 @@ void Foam::meshCloud::locate(std::string& failure)
         {
             continue;
         }
+        gone.push_back(size_t(leaving[k]));
         if (taken[k])
         {
-            world_.check
-            (
-                dem_world_remove_particle(world_, size_t(leaving[k]), -1),
-                "dem_world_remove_particle"
-            );
+            goneOutlet.push_back(-1);
             continue;
         }
         label patchi =
@@ -175,15 +176,16 @@ void Foam::meshCloud::locate(std::string& failure)
                 WarningInFunction << msg.str().c_str() << endl;
             }
         }
-        world_.check
-        (
-            dem_world_remove_particle
-            (
-                world_, size_t(leaving[k]), o >= 0 ? outletIds_[o] : -1
-            ),
-            "dem_world_remove_particle"
-        );
+        goneOutlet.push_back(o >= 0 ? outletIds_[o] : -1);
     }
+    world_.check
+    (
+        dem_world_remove_particles
+        (
+            world_, gone.data(), goneOutlet.data(), gone.size()
+        ),
+        "dem_world_remove_particles"
+    );
     reduce(nOut, sumOp<label>());
     reduce(nLost, sumOp<label>());
     if (nOut + nLost > 0)

@@ -381,21 +381,18 @@ Foam::label Foam::particleDecomposition::moveToOwners()
     boolList taken, stays;
     labelList exitPatch;
     migrate(leaving, exitFace, taken, stays, exitPatch);
-    // from the highest index down (removal swaps with the last)
-    label given = 0;
-    for (label k = leaving.size() - 1; k >= 0; --k)
+    // in one call (one pass over the neighbour list for all)
+    std::vector<size_t> given;
+    forAll(leaving, k)
     {
-        if (taken[k])
-        {
-            world_.check
-            (
-                dem_world_remove_particle(world_, size_t(leaving[k]), -1),
-                "dem_world_remove_particle"
-            );
-            ++given;
-        }
+        if (taken[k]) given.push_back(size_t(leaving[k]));
     }
-    return given;
+    world_.check
+    (
+        dem_world_remove_particles(world_, given.data(), nullptr, given.size()),
+        "dem_world_remove_particles"
+    );
+    return label(given.size());
 }
 
 
