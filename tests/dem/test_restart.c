@@ -81,6 +81,22 @@ static size_t state_bytes(dem_world *w, void **buf)
 /* Equal runs give byte-identical state files whatever the padding bytes of
  * the caller's structs held, and a restored state saves to the same bytes:
  * restarted and uninterrupted runs can be compared file by file. */
+/* two worlds restored from the state after nsteps of setup() (contacts
+   with history), for comparing two ways of doing the same */
+static void two_copies(int64_t nsteps, dem_world **p, dem_world **q)
+{
+    dem_world *s = setup();
+    TRY(s, dem_world_step(s, nsteps));
+    void *buf;
+    size_t nb = state_bytes(s, &buf);
+    TRY(*p, dem_world_create(p));
+    TRY(*q, dem_world_create(q));
+    TRY(*p, dem_world_restore_memory(*p, buf, nb));
+    TRY(*q, dem_world_restore_memory(*q, buf, nb));
+    free(buf);
+    dem_world_destroy(&s);
+}
+
 static void check_state_bytes(int64_t nsteps)
 {
     dem_world *z = setup_filled(0x00), *g = setup_filled(0xA5);
@@ -174,15 +190,8 @@ int main(void)
        after it (pairs of two removed particles are not kept pending, which
        a list build drops anyway) */
     {
-        dem_world *s1 = setup();
-        TRY(s1, dem_world_step(s1, n1));
-        void *buf;
-        size_t nb = state_bytes(s1, &buf);
         dem_world *p = NULL, *q = NULL;
-        TRY(p, dem_world_create(&p));
-        TRY(q, dem_world_create(&q));
-        TRY(p, dem_world_restore_memory(p, buf, nb));
-        TRY(q, dem_world_restore_memory(q, buf, nb));
+        two_copies(n1, &p, &q);
         const size_t n = dem_world_count(p);
         unsigned char *keep = malloc(n);
         for (size_t i = 0; i < n; ++i) keep[i] = (unsigned char)(i % 3 != 1 && i % 7 != 0);
@@ -209,8 +218,8 @@ int main(void)
             check_status("remove_unkept of an empty world without a mask", dem_world_remove_unkept(e, NULL), DEM_OK);
             dem_world_destroy(&e);
         }
-        free(keep); free(buf);
-        dem_world_destroy(&s1); dem_world_destroy(&p); dem_world_destroy(&q);
+        free(keep);
+        dem_world_destroy(&p); dem_world_destroy(&q);
     }
 
     /* dem_world_remove_particles (one call, indices in any order, some
@@ -218,15 +227,8 @@ int main(void)
        from the highest index down: the same particles in the same order,
        the same outlet books, and the same run after it */
     {
-        dem_world *s1 = setup();
-        TRY(s1, dem_world_step(s1, n1));
-        void *buf;
-        size_t nb = state_bytes(s1, &buf);
         dem_world *p = NULL, *q = NULL;
-        TRY(p, dem_world_create(&p));
-        TRY(q, dem_world_create(&q));
-        TRY(p, dem_world_restore_memory(p, buf, nb));
-        TRY(q, dem_world_restore_memory(q, buf, nb));
+        two_copies(n1, &p, &q);
         const size_t n = dem_world_count(p);
         size_t *idx = malloc(n * sizeof *idx), m = 0;
         int *out = malloc(n * sizeof *out);
@@ -270,8 +272,8 @@ int main(void)
                      DEM_OK);
         check_abs("remove_particles: refused calls removed nothing", (double)dem_world_count(q),
                   (double)dem_world_count(p), 0.0);
-        free(idx); free(out); free(buf);
-        dem_world_destroy(&s1); dem_world_destroy(&p); dem_world_destroy(&q);
+        free(idx); free(out);
+        dem_world_destroy(&p); dem_world_destroy(&q);
     }
 
     /* in-memory checkpoint (demFoam's last good state): save after n1 steps,
