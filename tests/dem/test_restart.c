@@ -131,6 +131,18 @@ static int same(dem_world *a, dem_world *b, double *maxdiff)
     return ok;
 }
 
+/* p and q run nsteps on and stay bit-identical */
+static void same_after(dem_world *p, dem_world *q, int64_t nsteps, const char *what)
+{
+    TRY(p, dem_world_step(p, nsteps));
+    TRY(q, dem_world_step(q, nsteps));
+    double md;
+    const int ok = same(p, q, &md);
+    printf("%s: %s, %lld steps on: max |dx|+|dv| %g vs 0 (tol exact, memcmp)\n", ok ? "PASS" : "FAIL", what,
+           (long long)nsteps, md);
+    if (!ok) check_failures++;
+}
+
 int main(void)
 {
     /* outside the source tree, unique per run (normal and sanitizer runs may overlap) */
@@ -203,12 +215,7 @@ int main(void)
         printf("%s: remove_unkept vs remove_particle from the top: the same %zu of %zu particles in the same order: "
                "max |dx|+|dv| %g vs 0 (tol exact, memcmp)\n", ok ? "PASS" : "FAIL", dem_world_count(q), n, md);
         if (!ok) check_failures++;
-        TRY(p, dem_world_step(p, n2));
-        TRY(q, dem_world_step(q, n2));
-        ok = same(p, q, &md);
-        printf("%s: remove_unkept vs remove_particle from the top, %lld steps on: max |dx|+|dv| %g vs 0 "
-               "(tol exact, memcmp)\n", ok ? "PASS" : "FAIL", (long long)n2, md);
-        if (!ok) check_failures++;
+        same_after(p, q, n2, "remove_unkept vs remove_particle from the top");
         check_status("remove_unkept without a mask", dem_world_remove_unkept(q, NULL), DEM_ERR_ARG);
         /* a processor that holds none: an empty mask (NULL from an empty
            std::vector) is not an error */
@@ -254,12 +261,7 @@ int main(void)
         check_abs("remove_particles: outlet 0 count as the repeated calls'", (double)cq, (double)cp, 0.0);
         check_abs("remove_particles: outlet 0 mass as the repeated calls'", mq, mp, 0.0);
         check_below("remove_particles: some booked on outlet 0", 1.0 - (double)cq, 0.0);
-        TRY(p, dem_world_step(p, n2));
-        TRY(q, dem_world_step(q, n2));
-        ok = same(p, q, &md);
-        printf("%s: remove_particles vs remove_particle from the top, %lld steps on: max |dx|+|dv| %g vs 0 "
-               "(tol exact, memcmp)\n", ok ? "PASS" : "FAIL", (long long)n2, md);
-        if (!ok) check_failures++;
+        same_after(p, q, n2, "remove_particles vs remove_particle from the top");
         const size_t twice[2] = {0, 0}, beyond[1] = {dem_world_count(q)};
         const int badOutlet[1] = {7};
         check_status("remove_particles: an index given twice", dem_world_remove_particles(q, twice, NULL, 2),
