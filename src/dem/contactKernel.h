@@ -352,8 +352,7 @@ static DEM_ALWAYS_INLINE void dem_phased_loop(dem_world *w, void *L, size_t nlaw
             const int k0 = off[i], k1 = off[i + 1];
             if (k0 == k1) continue;
             const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
-            const double ai = rad[i], mi = mass[i], Ii = 0.4 * mi * ai * ai;
-            const dem_pair *prow = pt + (size_t)mat[i] * nm;
+            const double ai = rad[i];
             /* phase 1 (gather): which entries touch; appended to the block */
             for (int k = k0; k < k1; ++k) {
                 const int j = nbj[k];
@@ -368,22 +367,36 @@ static DEM_ALWAYS_INLINE void dem_phased_loop(dem_world *w, void *L, size_t nlaw
                     const double keep = touch ? 1.0 : 0.0;
                     h[0] *= keep; h[1] *= keep; h[2] *= keep;
                 }
+                /* only what the touch test needs and the indices: the other
+                   per-contact values are gathered for the touching ones below */
                 Bd0[nc] = d0; Bd1[nc] = d1; Bd2[nc] = d2; Bs[nc] = s;
-                Bmj[nc] = mass[j]; Baj[nc] = aj;
-                if (!uniform) consts(B, L, nc, prow + mat[j]);
-                Bj[nc] = j; Bk[nc] = k;
-                Bai[nc] = ai; Bmi[nc] = mi; BIi[nc] = Ii; Bi[nc] = (int)i;
+                Bj[nc] = j; Bk[nc] = k; Bi[nc] = (int)i;
                 nc += touch;
             }
             if (nc < DEM_PHASED_BLOCK) continue;  /* rows are never split: buffer >= block + longest row */
         }
         if (nc == 0) continue;
         nct += (size_t)nc;
+        /* phase 1b (gather, touching contacts only): masses, radii, inertia, pair constants */
+        for (int a = 0; a < nc; ++a) {
+            const int j = Bj[a], ii = Bi[a];
+            const double ai = rad[ii], mi = mass[ii];
+            Bmj[a] = mass[j]; Baj[a] = rad[j];
+            Bai[a] = ai; Bmi[a] = mi; BIi[a] = 0.4 * mi * ai * ai;
+            if (!uniform) consts(B, L, a, pt + (size_t)mat[ii] * nm + mat[j]);
+        }
         /* phase 2 (vector): geometry, normal force */
         geometry(w, B, L, nc, uniform, pred);
-        for (int a = 0; a < nc; ++a) {
-            const double ov = Bdelta[a];
-            if (ov > movr * Bs[a]) movr = ov / Bs[a];
+        {   /* the largest overlap ratio: the serial update only in a block that
+               raises it (a test against the block's first value vectorises) */
+            int up = 0;
+            const double m0 = movr;
+            for (int a = 0; a < nc; ++a) up |= Bdelta[a] > m0 * Bs[a];
+            if (up)
+                for (int a = 0; a < nc; ++a) {
+                    const double ov = Bdelta[a];
+                    if (ov > movr * Bs[a]) movr = ov / Bs[a];
+                }
         }
         /* phase 3 (gather) */
         dem_phased_kinematics(w, B, nc, uniform != 2);
