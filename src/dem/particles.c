@@ -290,24 +290,37 @@ dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet)
     return dem_remove_booked(w, index, outlet);
 }
 
+/* Removes the owned particles with how[i] != 0 (1: no outlet, 2 + k: on
+ * outlet k) in one pass over the list for the pair history of those in gone
+ * (the ones without an outlet), then from the highest index down: each
+ * removal moves the last particle, one that stays, into the hole, as
+ * repeated remove_particle calls from the top would. */
+static dem_status remove_marked(dem_world *w, const int *how, const unsigned char *gone, const char *fn)
+{
+    dem_status st = dem_history_to_pending(w, -1, gone, fn);
+    if (st) return st;
+    for (size_t i = w->n; i-- > 0;)
+        if (how[i] && (st = dem_remove_booked(w, i, how[i] - 2))) return st;
+    return DEM_OK;
+}
+
 dem_status dem_world_remove_unkept(dem_world *w, const unsigned char *keep)
 {
     if (!w) return DEM_ERR_ARG;
     const size_t n = w->n;
     if (!n) return DEM_OK;  /* nothing to remove; an empty mask may be NULL */
     DEM_NEED(w, keep, "remove_unkept");
+    int *how = calloc(n, sizeof *how);
     unsigned char *gone = calloc(n, 1);
-    if (!gone) return DEM_FAIL(w, DEM_ERR_NOMEM, "remove_unkept: mask of %zu particles", n);
-    for (size_t i = 0; i < n; ++i) gone[i] = !keep[i];
-    /* one pass over the list instead of one per particle (O(n) each) */
-    dem_status s = dem_history_to_pending(w, -1, gone, "remove_unkept");
+    dem_status st = DEM_OK;
+    if (!how || !gone) st = DEM_FAIL(w, DEM_ERR_NOMEM, "remove_unkept: masks of %zu particles", n);
+    else {
+        for (size_t i = 0; i < n; ++i) { gone[i] = !keep[i]; how[i] = gone[i]; }
+        st = remove_marked(w, how, gone, "remove_unkept");
+    }
+    free(how);
     free(gone);
-    if (s) return s;
-    /* from the highest index down: each removal moves the last particle,
-       one that stays, into the hole, as repeated remove_particle calls */
-    for (size_t i = n; i-- > 0;)
-        if (!keep[i]) dem_remove_index(w, i);
-    return DEM_OK;
+    return st;
 }
 
 dem_status dem_world_remove_particles(dem_world *w, const size_t *index, const int *outlet, size_t m)
@@ -342,12 +355,7 @@ dem_status dem_world_remove_particles(dem_world *w, const size_t *index, const i
         how[i] = o < 0 ? 1 : 2 + o;
         gone[i] = o < 0;
     }
-    /* one pass over the list for the ones without an outlet */
-    if ((st = dem_history_to_pending(w, -1, gone, "remove_particles"))) goto out;
-    for (size_t i = n; i-- > 0;) {
-        if (!how[i]) continue;
-        if ((st = dem_remove_booked(w, i, how[i] - 2))) goto out;
-    }
+    st = remove_marked(w, how, gone, "remove_particles");
 out:
     free(how);
     free(gone);
