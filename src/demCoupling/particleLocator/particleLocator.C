@@ -14,7 +14,9 @@ Foam::particleLocator::particleLocator(const polyMesh& mesh, const label maxWalk
     maxWalk_(maxWalk),
     nWalk_(0),
     nGlobal_(0),
-    faceProc_(mesh.nBoundaryFaces(), -1)
+    faceProc_(mesh.nBoundaryFaces(), -1),
+    magSf_(mag(mesh.faceAreas())),
+    faceTol_(1e-12*sqrt(magSf_))
 {
     for (const polyPatch& pp : mesh.boundaryMesh())
     {
@@ -44,14 +46,13 @@ Foam::label Foam::particleLocator::exitFace
     forAll(c, i)
     {
         const label facei = c[i];
-        const scalar magS = mag(Sf[facei]);
-        scalar d = ((p - Cf[facei]) & Sf[facei])/magS;
+        scalar d = ((p - Cf[facei]) & Sf[facei])/magSf_[facei];
         if (own[facei] != celli)
         {
             d = -d;
         }
         // tolerance: 1e-12 of the face size
-        if (d > dist + 1e-12*sqrt(magS))
+        if (d > dist + faceTol_[facei])
         {
             dist = d;
             best = facei;
@@ -122,7 +123,7 @@ Foam::label Foam::particleLocator::search
             const label facei = c[i];
             if (!mesh_.isInternalFace(facei))
             {
-                const vector n = mesh_.faceAreas()[facei]/mag(mesh_.faceAreas()[facei]);
+                const vector n = mesh_.faceAreas()[facei]/magSf_[facei];
                 const scalar d = (p - mesh_.faceCentres()[facei]) & n;
                 if (d > best)
                 {

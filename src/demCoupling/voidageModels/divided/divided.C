@@ -98,7 +98,7 @@ void Foam::voidageModels::divided::addWeights
     {
         for (const label facei : hc)
         {
-            vector n = Sf[facei]/mag(Sf[facei]);
+            vector n = Sf[facei]/locator_.magSf()[facei];
             if (own[facei] != hostCell) n = -n;
             const scalar d = (Cf[facei] - x) & n;
             if (d < r)
