@@ -30,16 +30,19 @@ dem_status dem_history_to_pending(dem_world *w, ptrdiff_t only, const unsigned c
         if (r >= 0 && (size_t)r < w->nrows) inv[r] = (int)q;
     }
     for (size_t r = 0; r < w->nrows; ++r) {
+        const int a = inv[r];
+        if (a < 0) continue;
+        /* the tests on the indices first, the history (3 doubles) last */
         for (int k = w->nb_off[r]; k < w->nb_off[r + 1]; ++k) {
-            const double *h = w->nb_h + 3 * (size_t)k;
-            if (!dem_history_nonzero(h)) continue;
             if (only >= 0 && (int)r != row && w->nb_j[k] != row) continue;
-            int a = inv[r], b = inv[w->nb_j[k]];
-            if (a < 0 || b < 0) continue;
+            const int b = inv[w->nb_j[k]];
+            if (b < 0) continue;
             if (only < 0 && gone) {
                 int ga = (size_t)a < w->n && gone[a], gb = (size_t)b < w->n && gone[b];
                 if (ga == gb) continue;
             } else if (only < 0 && (size_t)a < w->n && (size_t)b < w->n) continue;
+            const double *h = w->nb_h + 3 * (size_t)k;
+            if (!dem_history_nonzero(h)) continue;
             if (w->npend == w->cappend) {
                 size_t nc = w->cappend ? 2 * w->cappend : 64;
                 dem_pending *q = realloc(w->pend, nc * sizeof *q);
