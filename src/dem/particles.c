@@ -291,16 +291,19 @@ dem_status dem_world_remove_particle(dem_world *w, size_t index, int outlet)
 }
 
 /* Removes the owned particles with how[i] != 0 (1: no outlet, 2 + k: on
- * outlet k) in one pass over the list for the pair history of those in gone
- * (the ones without an outlet), then from the highest index down: each
- * removal moves the last particle, one that stays, into the hole, as
- * repeated remove_particle calls from the top would. */
+ * outlet k; how NULL: those in gone, none on an outlet) in one pass over the
+ * list for the pair history of those in gone (the ones without an outlet),
+ * then from the highest index down: each removal moves the last particle,
+ * one that stays, into the hole, as repeated remove_particle calls from the
+ * top would. */
 static dem_status remove_marked(dem_world *w, const int *how, const unsigned char *gone, const char *fn)
 {
     dem_status st = dem_history_to_pending(w, -1, gone, fn);
     if (st) return st;
-    for (size_t i = w->n; i-- > 0;)
-        if (how[i] && (st = dem_remove_booked(w, i, how[i] - 2))) return st;
+    for (size_t i = w->n; i-- > 0;) {
+        const int o = how ? how[i] : gone[i];
+        if (o && (st = dem_remove_booked(w, i, o - 2))) return st;
+    }
     return DEM_OK;
 }
 
@@ -310,15 +313,10 @@ dem_status dem_world_remove_unkept(dem_world *w, const unsigned char *keep)
     const size_t n = w->n;
     if (!n) return DEM_OK;  /* nothing to remove; an empty mask may be NULL */
     DEM_NEED(w, keep, "remove_unkept");
-    int *how = calloc(n, sizeof *how);
     unsigned char *gone = calloc(n, 1);
-    dem_status st = DEM_OK;
-    if (!how || !gone) st = DEM_FAIL(w, DEM_ERR_NOMEM, "remove_unkept: masks of %zu particles", n);
-    else {
-        for (size_t i = 0; i < n; ++i) { gone[i] = !keep[i]; how[i] = gone[i]; }
-        st = remove_marked(w, how, gone, "remove_unkept");
-    }
-    free(how);
+    if (!gone) return DEM_FAIL(w, DEM_ERR_NOMEM, "remove_unkept: mask of %zu particles", n);
+    for (size_t i = 0; i < n; ++i) gone[i] = !keep[i];
+    const dem_status st = remove_marked(w, NULL, gone, "remove_unkept");
     free(gone);
     return st;
 }
