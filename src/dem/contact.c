@@ -1,154 +1,113 @@
 /*---------------------------------------------------------------------------*\
   demFoam DEM core - contact forces: the pair loop of the selected law
-  (laws/, one call per evaluation) and the wall contacts.
+  (laws/, one call per evaluation), the law's wall loop, and which
+  triangle contacts of a particle count.
   Copyright (C) 2026 the demFoam authors
   License: GPL-3.0-or-later (see LICENSE)
 
   Convention: contactKernel.h.  Each law brings its own loop over the pairs
-  of the neighbour list (so the per-pair work has no indirect call); wall
-  contacts, far fewer, call the law's one-contact kernel through the table.
+  of the neighbour list and its wall loop (wallLoop.h), so neither the
+  per-pair nor the per-wall-contact work has an indirect call.
 \*---------------------------------------------------------------------------*/
-#include "contactKernel.h"
+#include "wallLoop.h"
 #include <stdlib.h>
 #include <string.h>
 
-/* One wall contact of particle i with unit normal n (wall -> centre),
- * overlap delta, wall velocity vw. */
-static inline void wall_contact(dem_world *w, dem_contact_fn one, size_t i, int wall, const double n[3],
-                                double delta, const double vw[3], int wallmat, double *h)
-{
-    const double ai = w->rad[i], mi = w->mass[i];
-    const double *vi = w->v + 3 * i, *wi = w->w + 3 * i;
-    const double W[3] = {ai * wi[0], ai * wi[1], ai * wi[2]};
-    double cr[3];
-    dem_cross(W, n, cr);
-    const double vc[3] = {vi[0] - vw[0] - cr[0], vi[1] - vw[1] - cr[1], vi[2] - vw[2] - cr[2]};
-    const dem_pair *q = &w->pair[(size_t)w->mat_of[i] * w->nmat + wallmat];
-    double F[3], ft[3], fel, fn;
-    one(q, w->hdt, n, delta, 2.0 * ai, vc, mi, ai, h, F, ft, &fel, &fn);
-    if (w->crec_now) dem_record_contact(w, i, wall, 1, 0, delta, n, fn, ft);
-    double c[3];
-    dem_cross(n, ft, c);
-    for (int k = 0; k < 3; ++k) {
-        w->f[3 * i + k] += F[k];
-        w->t[3 * i + k] -= ai * c[k];
-    }
-    if (q->mu_r > 0.0) {
-        double M[3];
-        dem_rolling(q->mu_r, fel, wi, NULL, 0.4 * mi * ai * ai, 0.0, w->cfg.dt, M);
-        for (int k = 0; k < 3; ++k) w->t[3 * i + k] += M[k];
-    }
-    w->wall_contacts++;
-    if (delta > w->max_overlap * 2.0 * ai) w->max_overlap = delta / (2.0 * ai);
-}
-
 typedef struct { int k; int feature; int nv; int fv[3]; double d2, cp[3]; int acc; } mesh_cand;
 
-static void wall_loop(dem_world *w, dem_contact_fn one)
+int dem_wall_mesh_contacts(dem_world *w, size_t i, int k0, int k1, dem_mesh_contact out[DEM_WALL_MESH_MAX])
 {
-    const int *off = w->wc_off;
-    for (size_t i = 0; i < w->n; ++i) {
-        int k0 = off[i], k1 = off[i + 1];
-        if (k0 == k1) continue;
-        const double *xi = w->x + 3 * i;
-        const double ai = w->rad[i];
-        mesh_cand mc[64];
-        int nmc = 0;
-        for (int k = k0; k < k1; ++k) {
-            int wall = w->wc_wall[k];
-            double *h = w->wc_h + 3 * (size_t)k;
-            if (w->wc_tri[k] < 0) {
-                const dem_plane *P = &w->planes[w->wall_index[wall]];
-                double d = 0;
-                for (int c = 0; c < 3; ++c)
-                    d += (xi[c] - P->x0[c] - P->vel[c] * (w->time - P->t0)) * P->n[c];
-                if (d >= ai || d <= -ai) { h[0] = h[1] = h[2] = 0.0; continue; }
-                wall_contact(w, one, i, wall, P->n, ai - d, P->vel, P->material, h);
-            } else {
-                const dem_mesh *m = &w->meshes[w->wall_index[wall]];
-                int t = w->wc_tri[k];
-                double Pv[3][3], cp[3];
-                for (int v = 0; v < 3; ++v)
-                    for (int c = 0; c < 3; ++c)
-                        Pv[v][c] = m->v0[3 * (size_t)m->tri[3 * t + v] + c] + m->vel[c] * (w->time - m->t0);
-                int feat = dem_closest_on_triangle(xi, Pv[0], Pv[1], Pv[2], cp);
-                double d2 = 0;
-                for (int c = 0; c < 3; ++c) d2 += (xi[c] - cp[c]) * (xi[c] - cp[c]);
-                if (d2 >= ai * ai || nmc >= 64) { continue; }
-                mesh_cand *z = &mc[nmc++];
-                z->k = k; z->feature = feat; z->d2 = d2; z->acc = 0;
-                memcpy(z->cp, cp, sizeof cp);
-                const int *tv = m->tri + 3 * t;
-                static const int fv_of[7][3] = {{0, 1, 2}, {0, 0, 0}, {1, 0, 0}, {2, 0, 0},
-                                                {0, 1, 0}, {1, 2, 0}, {2, 0, 0}};
-                z->nv = feat == 0 ? 3 : (feat <= 3 ? 1 : 2);
-                for (int c = 0; c < z->nv; ++c) z->fv[c] = tv[fv_of[feat][c]];
-            }
-        }
-        /* mesh candidates that are not touching lose their history below */
-        if (nmc) {
-            /* accept in order of distance; an edge/vertex contact whose
-               vertices all belong to an accepted triangle is the same contact */
-            for (int a = 0; a < nmc; ++a) {
-                int best = -1;
-                for (int b = 0; b < nmc; ++b)
-                    if (!mc[b].acc && (best < 0 || mc[b].d2 < mc[best].d2 ||
-                                       (mc[b].d2 == mc[best].d2 && mc[b].feature < mc[best].feature)))
-                        best = b;
-                mesh_cand *z = &mc[best];
-                z->acc = 1;
-                if (z->feature != 0) {
-                    int wz = w->wc_wall[z->k];
-                    for (int b = 0; b < nmc; ++b) {
-                        if (b == best || mc[b].acc != 2 || w->wc_wall[mc[b].k] != wz) continue;
-                        const dem_mesh *m = &w->meshes[w->wall_index[wz]];
-                        const int *tv = m->tri + 3 * w->wc_tri[mc[b].k];
-                        int all = 1;
-                        for (int c = 0; c < z->nv && all; ++c)
-                            all = z->fv[c] == tv[0] || z->fv[c] == tv[1] || z->fv[c] == tv[2];
-                        if (all) { z->acc = 3; break; } /* rejected */
-                    }
-                }
-                if (z->acc == 1) z->acc = 2; /* accepted */
-            }
-            /* history hand-over: a new accepted contact takes the history of a
-               rejected/ended candidate of the same mesh */
-            for (int a = 0; a < nmc; ++a) {
-                if (mc[a].acc != 2) continue;
-                double *h = w->wc_h + 3 * (size_t)mc[a].k;
-                if (h[0] != 0 || h[1] != 0 || h[2] != 0) continue;
-                int wz = w->wc_wall[mc[a].k];
-                for (int k = k0; k < k1; ++k) {
-                    if (w->wc_tri[k] < 0 || w->wc_wall[k] != wz || k == mc[a].k) continue;
-                    int isacc = 0;
-                    for (int b = 0; b < nmc; ++b) if (mc[b].k == k && mc[b].acc == 2) isacc = 1;
-                    if (isacc) continue;
-                    double *h2 = w->wc_h + 3 * (size_t)k;
-                    if (h2[0] != 0 || h2[1] != 0 || h2[2] != 0) {
-                        memcpy(h, h2, 3 * sizeof(double));
-                        h2[0] = h2[1] = h2[2] = 0.0;
-                        break;
-                    }
+    const double *xi = w->x + 3 * i;
+    const double ai = w->rad[i];
+    mesh_cand mc[DEM_WALL_MESH_MAX];
+    int nmc = 0;
+    for (int k = k0; k < k1; ++k) {
+        if (w->wc_tri[k] < 0) continue;
+        const dem_mesh *m = &w->meshes[w->wall_index[w->wc_wall[k]]];
+        int t = w->wc_tri[k];
+        double Pv[3][3], cp[3];
+        for (int v = 0; v < 3; ++v)
+            for (int c = 0; c < 3; ++c)
+                Pv[v][c] = m->v0[3 * (size_t)m->tri[3 * t + v] + c] + m->vel[c] * (w->time - m->t0);
+        int feat = dem_closest_on_triangle(xi, Pv[0], Pv[1], Pv[2], cp);
+        double d2 = 0;
+        for (int c = 0; c < 3; ++c) d2 += (xi[c] - cp[c]) * (xi[c] - cp[c]);
+        if (d2 >= ai * ai || nmc >= DEM_WALL_MESH_MAX) { continue; }
+        mesh_cand *z = &mc[nmc++];
+        z->k = k; z->feature = feat; z->d2 = d2; z->acc = 0;
+        memcpy(z->cp, cp, sizeof cp);
+        const int *tv = m->tri + 3 * t;
+        static const int fv_of[7][3] = {{0, 1, 2}, {0, 0, 0}, {1, 0, 0}, {2, 0, 0},
+                                        {0, 1, 0}, {1, 2, 0}, {2, 0, 0}};
+        z->nv = feat == 0 ? 3 : (feat <= 3 ? 1 : 2);
+        for (int c = 0; c < z->nv; ++c) z->fv[c] = tv[fv_of[feat][c]];
+    }
+    /* mesh candidates that are not touching lose their history below */
+    if (nmc) {
+        /* accept in order of distance; an edge/vertex contact whose
+           vertices all belong to an accepted triangle is the same contact */
+        for (int a = 0; a < nmc; ++a) {
+            int best = -1;
+            for (int b = 0; b < nmc; ++b)
+                if (!mc[b].acc && (best < 0 || mc[b].d2 < mc[best].d2 ||
+                                   (mc[b].d2 == mc[best].d2 && mc[b].feature < mc[best].feature)))
+                    best = b;
+            mesh_cand *z = &mc[best];
+            z->acc = 1;
+            if (z->feature != 0) {
+                int wz = w->wc_wall[z->k];
+                for (int b = 0; b < nmc; ++b) {
+                    if (b == best || mc[b].acc != 2 || w->wc_wall[mc[b].k] != wz) continue;
+                    const dem_mesh *m = &w->meshes[w->wall_index[wz]];
+                    const int *tv = m->tri + 3 * w->wc_tri[mc[b].k];
+                    int all = 1;
+                    for (int c = 0; c < z->nv && all; ++c)
+                        all = z->fv[c] == tv[0] || z->fv[c] == tv[1] || z->fv[c] == tv[2];
+                    if (all) { z->acc = 3; break; } /* rejected */
                 }
             }
+            if (z->acc == 1) z->acc = 2; /* accepted */
         }
-        for (int k = k0; k < k1; ++k) {
-            if (w->wc_tri[k] < 0) continue;
-            int a = -1;
-            for (int b = 0; b < nmc; ++b) if (mc[b].k == k) { a = b; break; }
-            double *h = w->wc_h + 3 * (size_t)k;
-            if (a < 0 || mc[a].acc != 2) { h[0] = h[1] = h[2] = 0.0; continue; }
-            int wall = w->wc_wall[k];
-            const dem_mesh *m = &w->meshes[w->wall_index[wall]];
-            double d = sqrt(mc[a].d2), n[3];
-            if (d > 0) for (int c = 0; c < 3; ++c) n[c] = (xi[c] - mc[a].cp[c]) / (d + (d > 0.0 ? 0.0 : 1.0));
-            else {
-                const double *tn = m->nrm + 3 * w->wc_tri[k];
-                for (int c = 0; c < 3; ++c) n[c] = tn[c];
+        /* history hand-over: a new accepted contact takes the history of a
+           rejected/ended candidate of the same mesh */
+        for (int a = 0; a < nmc; ++a) {
+            if (mc[a].acc != 2) continue;
+            double *h = w->wc_h + 3 * (size_t)mc[a].k;
+            if (h[0] != 0 || h[1] != 0 || h[2] != 0) continue;
+            int wz = w->wc_wall[mc[a].k];
+            for (int k = k0; k < k1; ++k) {
+                if (w->wc_tri[k] < 0 || w->wc_wall[k] != wz || k == mc[a].k) continue;
+                int isacc = 0;
+                for (int b = 0; b < nmc; ++b) if (mc[b].k == k && mc[b].acc == 2) isacc = 1;
+                if (isacc) continue;
+                double *h2 = w->wc_h + 3 * (size_t)k;
+                if (h2[0] != 0 || h2[1] != 0 || h2[2] != 0) {
+                    memcpy(h, h2, 3 * sizeof(double));
+                    h2[0] = h2[1] = h2[2] = 0.0;
+                    break;
+                }
             }
-            wall_contact(w, one, i, wall, n, ai - d, m->vel, m->material, h);
         }
     }
+    /* the accepted ones in list order; the others' histories cleared */
+    int nout = 0;
+    for (int k = k0; k < k1; ++k) {
+        if (w->wc_tri[k] < 0) continue;
+        int a = -1;
+        for (int b = 0; b < nmc; ++b) if (mc[b].k == k) { a = b; break; }
+        if (a < 0 || mc[a].acc != 2) { double *h = w->wc_h + 3 * (size_t)k; h[0] = h[1] = h[2] = 0.0; continue; }
+        dem_mesh_contact *o = &out[nout++];
+        double d = sqrt(mc[a].d2);
+        if (d > 0) for (int c = 0; c < 3; ++c) o->n[c] = (xi[c] - mc[a].cp[c]) / (d + (d > 0.0 ? 0.0 : 1.0));
+        else {
+            const dem_mesh *m = &w->meshes[w->wall_index[w->wc_wall[k]]];
+            const double *tn = m->nrm + 3 * w->wc_tri[k];
+            for (int c = 0; c < 3; ++c) o->n[c] = tn[c];
+        }
+        o->k = k;
+        o->delta = ai - d;
+    }
+    return nout;
 }
 
 /* Room in the contact record for every list entry and wall candidate (an
@@ -192,7 +151,7 @@ void dem_forces(dem_world *w, double hist_dt)
     w->wall_contacts = 0;
     DEM_PROF_ADD(w, DEM_PROF_PAIRS, t0);
     DEM_PROF_START(t1);
-    if (w->nwalls) wall_loop(w, law->contact);
+    if (w->nwalls) law->wall_forces(w);      /* the law's wall loop (wallLoop.h) */
     DEM_PROF_ADD(w, DEM_PROF_WALLS, t1);
     w->forces_valid = 1;
     w->crec_valid = w->crec_now;

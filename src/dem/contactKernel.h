@@ -59,6 +59,22 @@ static inline double dem_predicted_vn(double vn, double fel, double C, double me
     return (meff * vn + h * fel) / (meff + h * C);
 }
 
+/* The Hertz normal force of hertzMindlin and hertzMindlinNoSlip for the
+ * branch-free block kernels (wallLoop.h): sqrt(R* delta), f_cn,
+ * sqrt(m* sqrt(R* delta)) and f_n, with the damping at the predicted
+ * velocity where pred > 0, by the IEEE operations of the laws' one-contact
+ * kernels (hp: half the step). */
+static DEM_ALWAYS_INLINE void dem_hertz_normal_select(double k43, double cn8, double pred, double rstar,
+                                                      double delta, double meff, double vn, double hp,
+                                                      double *sq, double *fcn, double *dn, double *fn)
+{
+    const double s = sqrt(rstar * delta), fc = k43 * s * delta, d = sqrt(meff * s), C = cn8 * d;
+    const double fn0 = fc - C * vn;
+    const double fnp = fc - C * dem_predicted_vn(vn, fc, C, meff, hp);
+    *sq = s; *fcn = fc; *dn = d;
+    *fn = pred > 0.0 ? fnp : fn0;
+}
+
 static inline void dem_rolling(double mu_r, double fel, const double *wi, const double *wj,
                                double Ii, double Ij, double dt, double M[3])
 {

@@ -44,11 +44,12 @@ typedef struct {
        rayleigh: also bound by the Rayleigh time where the law has one;
        damped: the duration with the pair's damping where the law knows it */
     double (*contact_time)(const dem_time_pair *p, double v_imp, int rayleigh, int damped);
-    /* all pairs of the neighbour list (one call per force evaluation) */
     /* all pairs of the neighbour list (one call per force evaluation); when
        w->crec_now, also appends each touching pair to w->crec (the same arithmetic) */
     void (*pair_forces)(dem_world *w, int periodic, double *max_overlap, size_t *contacts);
-    dem_contact_fn contact;     /* one contact (walls) */
+    /* all wall contacts (one call per force evaluation): DEM_WALL_FORCES
+       of wallLoop.h with the law's one-contact kernel */
+    void (*wall_forces)(dem_world *w);
 } dem_law;
 
 /* The registry (laws.c), indexed by dem_contact_law. */

@@ -18,9 +18,9 @@ int main(void)
 {
 #if defined(__GLIBC__)
     feenableexcept(FE_DIVBYZERO | FE_INVALID | FE_OVERFLOW);
-    const dem_contact_law laws[3] = {DEM_CONTACT_HERTZ_MINDLIN, DEM_CONTACT_LINEAR_SPRING_DASHPOT,
-                                     DEM_CONTACT_HERTZ_SPRING_DASHPOT};
-    for (int l = 0; l < 3; ++l) {
+    const dem_contact_law laws[4] = {DEM_CONTACT_HERTZ_MINDLIN, DEM_CONTACT_LINEAR_SPRING_DASHPOT,
+                                     DEM_CONTACT_HERTZ_SPRING_DASHPOT, DEM_CONTACT_HERTZ_MINDLIN_NO_SLIP};
+    for (int l = 0; l < 4; ++l) {
         dem_world *w = NULL;
         TRY(w, dem_world_create(&w));
         dem_config c;
@@ -33,7 +33,7 @@ int main(void)
         c.domain_hi[2] = 0.1;
         TRY(w, dem_world_configure(w, &c));
         dem_material m = test_material(1e7, 0.3, 0.4, 4e-5, -1);
-        m.damping = laws[l] == DEM_CONTACT_HERTZ_MINDLIN ? 0.3 : 0.005;
+        m.damping = laws[l] == DEM_CONTACT_HERTZ_MINDLIN || laws[l] == DEM_CONTACT_HERTZ_MINDLIN_NO_SLIP ? 0.3 : 0.005;
         m.stiffness_n = 20000;
         int glass, wall;
         TRY(w, dem_world_add_material(w, &m, &glass));

@@ -24,6 +24,7 @@
 #ifndef DEM_H
 #define DEM_H
 
+#include <math.h>   /* INFINITY (DEM_RIGID) */
 #include <stddef.h>
 #include <stdint.h>
 

@@ -5,7 +5,7 @@
   Copyright (C) 2026 the demFoam authors
   License: GPL-3.0-or-later (see LICENSE)
 \*---------------------------------------------------------------------------*/
-#include "contactKernel.h"
+#include "wallLoop.h"
 #include <string.h>
 
 double dem_hm_stiffness(const dem_material *m) { return m->youngs_modulus; }
@@ -325,6 +325,75 @@ static void contact(const dem_pair *q, double dt, const double n[3], double delt
     hm_force(q, dt, n, delta, d, vc, meff, rstar, h, F, ft, fel, fnout);
 }
 
+/* hm_force over a block of wall contacts, branch-free: each of its cases
+ * (no friction; delta_t,max rounded to 0; Coulomb sliding; sticking, with
+ * |h| = 0 apart) computed with the same IEEE operations and selected, so the
+ * results are hm_force's bit for bit.  Two loops: the guards of the
+ * divisions (|h| and delta_t,max where they are 0) go through memory to the
+ * second, because within one loop GCC (-fno-trapping-math) may undo a guard
+ * and divide by zero in a lane whose result is not used, which OpenFOAM's
+ * FOAM_SIGFPE traps (tests/dem/test_fpe.c). */
+static DEM_ALWAYS_INLINE void hm_wall_block(const dem_world *w, dem_wall_block *b, int nc)
+{
+    const double dt = w->hdt, hp = 0.5 * dt;
+    double k43[DEM_WALL_BLOCK], cn8[DEM_WALL_BLOCK], mumind[DEM_WALL_BLOCK], k43m[DEM_WALL_BLOCK],
+        ct8[DEM_WALL_BLOCK], fric[DEM_WALL_BLOCK], pred[DEM_WALL_BLOCK];
+    double dnA[DEM_WALL_BLOCK], dtmaxA[DEM_WALL_BLOCK], hmA[DEM_WALL_BLOCK], hmsA[DEM_WALL_BLOCK],
+        dsafeA[DEM_WALL_BLOCK], ktA[DEM_WALL_BLOCK];
+    for (int a = 0; a < nc; ++a) {
+        const dem_pair *q = b->q[a];
+        k43[a] = q->k43; cn8[a] = q->cn8; mumind[a] = q->mumind; k43m[a] = q->k43_mind; ct8[a] = q->ct8;
+        fric[a] = q->mu > 0.0 ? 1.0 : 0.0; pred[a] = q->pred;
+    }
+    /* normal force, v_t (into vc), history advanced (into h), |h|, guards */
+    DEM_IVDEP
+    for (int a = 0; a < nc; ++a) {
+        double sq, dn;
+        dem_hertz_block_start(b, a, k43[a], cn8[a], pred[a], dt, hp, &sq, &dn);
+        const double dtmax = mumind[a] * b->delta[a];
+        const double hm = sqrt(b->h0[a] * b->h0[a] + b->h1[a] * b->h1[a] + b->h2[a] * b->h2[a]);
+        dnA[a] = dn; dtmaxA[a] = dtmax; hmA[a] = hm; ktA[a] = k43m[a] * sq;
+        /* hm_force's sqrt(hm2 + guard) is hm where it is used (hm2 > 0) */
+        hmsA[a] = hm + (hm > 0.0 ? 0.0 : 1.0);
+        dsafeA[a] = dtmax + (dtmax > 0.0 ? 0.0 : 1.0);
+    }
+    /* the tangential force of each case, selected */
+    DEM_IVDEP
+    for (int a = 0; a < nc; ++a) {
+        const double h0 = b->h0[a], h1 = b->h1[a], h2 = b->h2[a];
+        const double vt0 = b->vc0[a], vt1 = b->vc1[a], vt2 = b->vc2[a];
+        const double dtmax = dtmaxA[a], kt = ktA[a], hm = hmA[a], hms = hmsA[a];
+        const double hm2 = h0 * h0 + h1 * h1 + h2 * h2;
+        const int zero = !(dtmax > 0.0) || !(fric[a] > 0.0);  /* no spring: h = 0, f_t = 0 */
+        const int slide = hm2 >= dtmax * dtmax;
+        /* sliding: h scaled back to |h| = delta_t,max, f_t = -kt h */
+        const double s = dtmax / hms;
+        const double hs0 = h0 * s, hs1 = h1 * s, hs2 = h2 * s;
+        /* sticking: f_t = c h (|h| > 0) - c_t (...) sqrt(r) v_t */
+        const double inv = 1.0 / (hms * dsafeA[a]);
+        const double x = hm * hm * inv;
+        const double r1 = 1.0 - x;
+        const double r = 0.5 * (r1 + fabs(r1));
+        const double sr = sqrt(r);
+        const double c = -kt * (1.0 - r * sr) * dtmax * dtmax * inv;
+        const int moved = hm2 > 0.0;
+        const double cd = -ct8[a] * dnA[a] * sqrt(moved ? sr : 1.0);
+        const double st0 = (moved ? c * h0 : 0.0) + cd * vt0, st1 = (moved ? c * h1 : 0.0) + cd * vt1,
+                     st2 = (moved ? c * h2 : 0.0) + cd * vt2;
+        const double ft0 = zero ? 0.0 : slide ? -kt * hs0 : st0;
+        const double ft1 = zero ? 0.0 : slide ? -kt * hs1 : st1;
+        const double ft2 = zero ? 0.0 : slide ? -kt * hs2 : st2;
+        b->h0[a] = zero ? 0.0 : slide ? hs0 : h0;
+        b->h1[a] = zero ? 0.0 : slide ? hs1 : h1;
+        b->h2[a] = zero ? 0.0 : slide ? hs2 : h2;
+        b->ft0[a] = ft0; b->ft1[a] = ft1; b->ft2[a] = ft2;
+        const double fn = b->fn[a];
+        b->F0[a] = fn * b->n0[a] + ft0; b->F1[a] = fn * b->n1[a] + ft1; b->F2[a] = fn * b->n2[a] + ft2;
+    }
+}
+
+DEM_WALL_FORCES_BLOCKED(wall_forces, contact, hm_wall_block)
+
 const dem_law dem_law_hertzMindlin = {
     .name = "hertzMindlin",
     .stiffness_name = "youngs_modulus",
@@ -333,5 +402,5 @@ const dem_law dem_law_hertzMindlin = {
     .pair = pair,
     .contact_time = contact_time,
     .pair_forces = pair_loops_hm,
-    .contact = contact,
+    .wall_forces = wall_forces,
 };

@@ -8,7 +8,7 @@
   Copyright (C) 2026 the demFoam authors
   License: GPL-3.0-or-later (see LICENSE)
 \*---------------------------------------------------------------------------*/
-#include "contactKernel.h"
+#include "wallLoop.h"
 
 /* shear modulus G = E / (2 (1 + nu)); a rigid side (E = inf) adds nothing */
 static double shear_part(const dem_material *m)
@@ -252,6 +252,60 @@ static void pair_forces(dem_world *w, int per, double *movr, size_t *nct)
     DEM_PHASED_DISPATCH(pair_loop_ns, w, per, movr, nct);
 }
 
+/* contact() over a block of wall contacts, branch-free: the spring's force,
+ * and its Coulomb-limited form, each with contact()'s IEEE operations and
+ * selected, so the results are contact()'s bit for bit.  The guards of the
+ * divisions (|f_t| and k_t where they are 0) go through memory to a second
+ * loop, as in hertzMindlin's wall block (tests/dem/test_fpe.c). */
+static DEM_ALWAYS_INLINE void ns_wall_block(const dem_world *w, dem_wall_block *b, int nc)
+{
+    const double dt = w->hdt, hp = 0.5 * dt;
+    double k43[DEM_WALL_BLOCK], cn8[DEM_WALL_BLOCK], pred[DEM_WALL_BLOCK], mu[DEM_WALL_BLOCK],
+        g8[DEM_WALL_BLOCK], cn[DEM_WALL_BLOCK];
+    double ctA[DEM_WALL_BLOCK], e0A[DEM_WALL_BLOCK], e1A[DEM_WALL_BLOCK], e2A[DEM_WALL_BLOCK],
+        ftmA[DEM_WALL_BLOCK], ftmsA[DEM_WALL_BLOCK], ktsA[DEM_WALL_BLOCK], springA[DEM_WALL_BLOCK];
+    for (int a = 0; a < nc; ++a) {
+        const dem_pair *q = b->q[a];
+        k43[a] = q->k43; cn8[a] = q->cn8; pred[a] = q->pred; mu[a] = q->mu; g8[a] = q->g8; cn[a] = q->cn;
+    }
+    /* normal force, v_t (into vc), history advanced (into h), the spring's force and guards */
+    DEM_IVDEP
+    for (int a = 0; a < nc; ++a) {
+        double sq, dn;
+        dem_hertz_block_start(b, a, k43[a], cn8[a], pred[a], dt, hp, &sq, &dn);
+        const double kt = g8[a] * sq, ct = cn[a] * sqrt(b->meff[a] * kt);
+        const double vt0 = b->vc0[a], vt1 = b->vc1[a], vt2 = b->vc2[a];
+        const double e0 = -kt * b->h0[a] - ct * vt0, e1 = -kt * b->h1[a] - ct * vt1, e2 = -kt * b->h2[a] - ct * vt2;
+        const double ftm = sqrt(e0 * e0 + e1 * e1 + e2 * e2);
+        ctA[a] = ct; e0A[a] = e0; e1A[a] = e1; e2A[a] = e2; ftmA[a] = ftm;
+        springA[a] = mu[a] > 0.0 && b->delta[a] > 0.0 ? 1.0 : 0.0;
+        ktsA[a] = kt + (kt > 0.0 ? 0.0 : 1.0);
+        /* |f_t| guarded where it is 0 (its quotient is used only beyond the limit, |f_t| > 0) */
+        ftmsA[a] = ftm + (ftm > 0.0 ? 0.0 : 1.0);
+    }
+    /* the Coulomb limit, selected */
+    DEM_IVDEP
+    for (int a = 0; a < nc; ++a) {
+        const double vt0 = b->vc0[a], vt1 = b->vc1[a], vt2 = b->vc2[a];
+        const double e0 = e0A[a], e1 = e1A[a], e2 = e2A[a], ct = ctA[a], kts = ktsA[a];
+        const double lim = mu[a] * b->fel[a];
+        const int spring = springA[a] > 0.0, over = ftmA[a] > lim;
+        const double s = lim / ftmsA[a];
+        const double l0 = e0 * s, l1 = e1 * s, l2 = e2 * s;
+        const double lh0 = -(l0 + ct * vt0) / kts, lh1 = -(l1 + ct * vt1) / kts, lh2 = -(l2 + ct * vt2) / kts;
+        const double ft0 = !spring ? 0.0 : over ? l0 : e0, ft1 = !spring ? 0.0 : over ? l1 : e1,
+                     ft2 = !spring ? 0.0 : over ? l2 : e2;
+        b->h0[a] = !spring ? 0.0 : over ? lh0 : b->h0[a];
+        b->h1[a] = !spring ? 0.0 : over ? lh1 : b->h1[a];
+        b->h2[a] = !spring ? 0.0 : over ? lh2 : b->h2[a];
+        b->ft0[a] = ft0; b->ft1[a] = ft1; b->ft2[a] = ft2;
+        const double fn = b->fn[a];
+        b->F0[a] = fn * b->n0[a] + ft0; b->F1[a] = fn * b->n1[a] + ft1; b->F2[a] = fn * b->n2[a] + ft2;
+    }
+}
+
+DEM_WALL_FORCES_BLOCKED(wall_forces, contact, ns_wall_block)
+
 const dem_law dem_law_hertzMindlinNoSlip = {
     .name = "hertzMindlinNoSlip",
     .stiffness_name = "youngs_modulus",
@@ -260,5 +314,5 @@ const dem_law dem_law_hertzMindlinNoSlip = {
     .pair = pair,
     .contact_time = contact_time,
     .pair_forces = pair_forces,
-    .contact = contact,
+    .wall_forces = wall_forces,
 };

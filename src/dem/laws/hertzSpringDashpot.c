@@ -31,6 +31,8 @@ static void pair_forces(dem_world *w, int periodic, double *max_overlap, size_t 
     dem_pair_loops(w, contact, periodic, max_overlap, contacts);
 }
 
+DEM_WALL_FORCES(wall_forces, contact)
+
 const dem_law dem_law_hertzSpringDashpot = {
     .name = "hertzSpringDashpot",
     .stiffness_name = "stiffness_n",
@@ -39,5 +41,5 @@ const dem_law dem_law_hertzSpringDashpot = {
     .pair = sd_pair,
     .contact_time = contact_time,
     .pair_forces = pair_forces,
-    .contact = contact,
+    .wall_forces = wall_forces,
 };

@@ -26,6 +26,8 @@ static void pair_forces(dem_world *w, int periodic, double *max_overlap, size_t 
     dem_pair_loops(w, contact, periodic, max_overlap, contacts);
 }
 
+DEM_WALL_FORCES(wall_forces, contact)
+
 const dem_law dem_law_linearSpringDashpot = {
     .name = "linearSpringDashpot",
     .stiffness_name = "stiffness_n",
@@ -34,5 +36,5 @@ const dem_law dem_law_linearSpringDashpot = {
     .pair = sd_pair,
     .contact_time = contact_time,
     .pair_forces = pair_forces,
-    .contact = contact,
+    .wall_forces = wall_forces,
 };

@@ -9,7 +9,7 @@
 \*---------------------------------------------------------------------------*/
 #ifndef DEM_SPRING_DASHPOT_H
 #define DEM_SPRING_DASHPOT_H
-#include "contactKernel.h"
+#include "wallLoop.h"
 
 static double sd_stiffness(const dem_material *m) { return m->stiffness_n; }
 
