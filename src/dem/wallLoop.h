@@ -22,35 +22,57 @@ typedef struct { int k; double n[3], delta; } dem_mesh_contact;
  * cleared or handed over (contact.c). */
 int dem_wall_mesh_contacts(dem_world *w, size_t i, int k0, int k1, dem_mesh_contact out[DEM_WALL_MESH_MAX]);
 
-/* One wall contact of particle i: unit normal n (wall -> centre), overlap
- * delta, wall velocity vw, the wall's material; the largest overlap over 2 a_i in *movr. */
-static DEM_ALWAYS_INLINE void dem_wall_contact(dem_world *w, dem_contact_fn one, size_t i, int wall,
-                                               const double n[3], double delta, const double vw[3], int wallmat,
-                                               double *h, double *movr)
+/* The contact-point velocity of particle i against a wall moving at vw,
+ * unit normal n (wall -> centre): v_i - v_w - (a_i w_i) x n. */
+static DEM_ALWAYS_INLINE void dem_wall_contact_velocity(const dem_world *w, size_t i, const double n[3],
+                                                        const double vw[3], double vc[3])
 {
-    const double ai = w->rad[i], mi = w->mass[i];
+    const double ai = w->rad[i];
     const double *vi = w->v + 3 * i, *wi = w->w + 3 * i;
     const double W[3] = {ai * wi[0], ai * wi[1], ai * wi[2]};
     double cr[3];
     dem_cross(W, n, cr);
-    const double vc[3] = {vi[0] - vw[0] - cr[0], vi[1] - vw[1] - cr[1], vi[2] - vw[2] - cr[2]};
-    const dem_pair *q = &w->pair[(size_t)w->mat_of[i] * w->nmat + wallmat];
-    double F[3], ft[3], fel, fn;
-    one(q, w->hdt, n, delta, 2.0 * ai, vc, mi, ai, h, F, ft, &fel, &fn);
+    vc[0] = vi[0] - vw[0] - cr[0]; vc[1] = vi[1] - vw[1] - cr[1]; vc[2] = vi[2] - vw[2] - cr[2];
+}
+
+/* What a wall contact of particle i adds, from the kernel's f_n, f_t and
+ * f_cn (F = f_n n + f_t, as every kernel computes it: law.h): the contact
+ * record, force and torque on i, rolling friction, the largest overlap
+ * over 2 a_i in *movr. */
+static DEM_ALWAYS_INLINE void dem_wall_contact_add(dem_world *w, size_t i, int wall, const dem_pair *q,
+                                                   const double n[3], double delta, double fn, const double ft[3],
+                                                   double fel, double *movr)
+{
+    const double ai = w->rad[i], mi = w->mass[i];
     if (w->crec_now) dem_record_contact(w, i, wall, 1, 0, delta, n, fn, ft);
     double c[3];
     dem_cross(n, ft, c);
     double *fi = w->f + 3 * i, *ti = w->t + 3 * i;
     for (int k = 0; k < 3; ++k) {
-        fi[k] += F[k];
+        fi[k] += fn * n[k] + ft[k];
         ti[k] -= ai * c[k];
     }
     if (q->mu_r > 0.0) {
         double M[3];
-        dem_rolling(q->mu_r, fel, wi, NULL, 0.4 * mi * ai * ai, 0.0, w->cfg.dt, M);
+        dem_rolling(q->mu_r, fel, w->w + 3 * i, NULL, 0.4 * mi * ai * ai, 0.0, w->cfg.dt, M);
         for (int k = 0; k < 3; ++k) ti[k] += M[k];
     }
     if (delta > *movr * 2.0 * ai) *movr = delta / (2.0 * ai);
+}
+
+/* One wall contact of particle i through the one-contact kernel: unit
+ * normal n (wall -> centre), overlap delta, wall velocity vw, the wall's material. */
+static DEM_ALWAYS_INLINE void dem_wall_contact(dem_world *w, dem_contact_fn one, size_t i, int wall,
+                                               const double n[3], double delta, const double vw[3], int wallmat,
+                                               double *h, double *movr)
+{
+    const double ai = w->rad[i];
+    double vc[3];
+    dem_wall_contact_velocity(w, i, n, vw, vc);
+    const dem_pair *q = &w->pair[(size_t)w->mat_of[i] * w->nmat + wallmat];
+    double F[3], ft[3], fel, fn;
+    one(q, w->hdt, n, delta, 2.0 * ai, vc, w->mass[i], ai, h, F, ft, &fel, &fn);
+    dem_wall_contact_add(w, i, wall, q, n, delta, fn, ft, fel, movr);
 }
 
 /* Signed distance of centre xi from plane P (positive on its normal's side). */
@@ -94,8 +116,7 @@ typedef struct {
     const dem_pair *q[DEM_WALL_BLOCK];
     /* in and out: tangential history */
     double h0[DEM_WALL_BLOCK], h1[DEM_WALL_BLOCK], h2[DEM_WALL_BLOCK];
-    /* out: as the one-contact kernel's F, ft, fel, fn */
-    double F0[DEM_WALL_BLOCK], F1[DEM_WALL_BLOCK], F2[DEM_WALL_BLOCK];
+    /* out: as the one-contact kernel's ft, fel, fn (F = fn n + ft follows) */
     double ft0[DEM_WALL_BLOCK], ft1[DEM_WALL_BLOCK], ft2[DEM_WALL_BLOCK], fel[DEM_WALL_BLOCK],
         fn[DEM_WALL_BLOCK];
     /* the skeleton's: particle, wall-list entry, wall */
@@ -123,33 +144,19 @@ static DEM_ALWAYS_INLINE void dem_hertz_block_start(dem_wall_block *b, int a, do
     b->fel[a] = fcn; b->fn[a] = fn;
 }
 
-/* the block's kernel, then each contact's history, record, force and torque
- * sums, rolling and largest overlap, in block order (dem_wall_contact's) */
+/* the block's kernel, then each contact's history and what it adds
+ * (dem_wall_contact_add), in block order */
 static DEM_ALWAYS_INLINE void dem_wall_block_flush(dem_world *w, dem_wall_block_fn kernel, dem_wall_block *b,
                                                    int nc, double *movr)
 {
     if (!nc) return;
     kernel(w, b, nc);
     for (int a = 0; a < nc; ++a) {
-        const size_t i = (size_t)b->i[a];
-        const double ai = w->rad[i], mi = w->mass[i];
         double *h = w->wc_h + 3 * (size_t)b->k[a];
         h[0] = b->h0[a]; h[1] = b->h1[a]; h[2] = b->h2[a];
         const double n[3] = {b->n0[a], b->n1[a], b->n2[a]}, ft[3] = {b->ft0[a], b->ft1[a], b->ft2[a]};
-        const double delta = b->delta[a];
-        if (w->crec_now) dem_record_contact(w, i, b->wall[a], 1, 0, delta, n, b->fn[a], ft);
-        double c[3];
-        dem_cross(n, ft, c);
-        double *fi = w->f + 3 * i, *ti = w->t + 3 * i;
-        fi[0] += b->F0[a]; fi[1] += b->F1[a]; fi[2] += b->F2[a];
-        for (int k = 0; k < 3; ++k) ti[k] -= ai * c[k];
-        const dem_pair *q = b->q[a];
-        if (q->mu_r > 0.0) {
-            double M[3];
-            dem_rolling(q->mu_r, b->fel[a], w->w + 3 * i, NULL, 0.4 * mi * ai * ai, 0.0, w->cfg.dt, M);
-            for (int k = 0; k < 3; ++k) ti[k] += M[k];
-        }
-        if (delta > *movr * 2.0 * ai) *movr = delta / (2.0 * ai);
+        dem_wall_contact_add(w, (size_t)b->i[a], b->wall[a], b->q[a], n, b->delta[a], b->fn[a], ft, b->fel[a],
+                             movr);
     }
 }
 
@@ -184,13 +191,11 @@ static DEM_ALWAYS_INLINE void dem_wall_loop(dem_world *w, dem_contact_fn one, de
                 continue;
             }
             /* the inputs of dem_wall_contact's kernel call */
-            const double *vi = w->v + 3 * i, *wi = w->w + 3 * i, *vw = P->vel;
-            const double W[3] = {ai * wi[0], ai * wi[1], ai * wi[2]};
-            double cr[3];
-            dem_cross(W, P->n, cr);
+            double vc[3];
+            dem_wall_contact_velocity(w, i, P->n, P->vel, vc);
             b.n0[nb] = P->n[0]; b.n1[nb] = P->n[1]; b.n2[nb] = P->n[2];
             b.delta[nb] = ai - d;
-            b.vc0[nb] = vi[0] - vw[0] - cr[0]; b.vc1[nb] = vi[1] - vw[1] - cr[1]; b.vc2[nb] = vi[2] - vw[2] - cr[2];
+            b.vc0[nb] = vc[0]; b.vc1[nb] = vc[1]; b.vc2[nb] = vc[2];
             b.meff[nb] = w->mass[i]; b.rstar[nb] = ai;
             b.q[nb] = &w->pair[(size_t)w->mat_of[i] * w->nmat + P->material];
             b.h0[nb] = h[0]; b.h1[nb] = h[1]; b.h2[nb] = h[2];

@@ -387,8 +387,6 @@ static DEM_ALWAYS_INLINE void hm_wall_block(const dem_world *w, dem_wall_block *
         b->h1[a] = zero ? 0.0 : slide ? hs1 : h1;
         b->h2[a] = zero ? 0.0 : slide ? hs2 : h2;
         b->ft0[a] = ft0; b->ft1[a] = ft1; b->ft2[a] = ft2;
-        const double fn = b->fn[a];
-        b->F0[a] = fn * b->n0[a] + ft0; b->F1[a] = fn * b->n1[a] + ft1; b->F2[a] = fn * b->n2[a] + ft2;
     }
 }
 

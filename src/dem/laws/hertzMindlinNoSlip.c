@@ -299,8 +299,6 @@ static DEM_ALWAYS_INLINE void ns_wall_block(const dem_world *w, dem_wall_block *
         b->h1[a] = !spring ? 0.0 : over ? lh1 : b->h1[a];
         b->h2[a] = !spring ? 0.0 : over ? lh2 : b->h2[a];
         b->ft0[a] = ft0; b->ft1[a] = ft1; b->ft2[a] = ft2;
-        const double fn = b->fn[a];
-        b->F0[a] = fn * b->n0[a] + ft0; b->F1[a] = fn * b->n1[a] + ft1; b->F2[a] = fn * b->n2[a] + ft2;
     }
 }
 
