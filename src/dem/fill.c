@@ -12,101 +12,12 @@
   particles it refuses are placed all the same but kept as centre and radius
   only (the shadow list): the draws and ids stay the unfiltered ones.
 \*---------------------------------------------------------------------------*/
-#include "dem_private.h"
+#include "placementGrid.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define DEM_FILL_TRIES 1000   /* attempts per particle before giving up */
-
-/*--- private placement grid -----------------------------------------------------*/
-typedef struct {
-    double lo[3], cs; int nc[3];
-    int *head, *next; double *xr; /* x, y, z, r per item */
-    size_t n, cap;
-} pgrid;
-
-static int pgrid_init(pgrid *g, const double lo[3], const double hi[3], double cs, size_t expect)
-{
-    memset(g, 0, sizeof *g);
-    g->cs = cs;
-    double tot = 1, m[3];
-    for (int k = 0; k < 3; ++k) {
-        g->lo[k] = lo[k];
-        m[k] = ceil((hi[k] - lo[k]) / cs);
-        if (!(m[k] >= 1)) m[k] = 1;
-        tot *= m[k];
-    }
-    while (tot > 4.0 * (double)expect + 1e6) { /* keep the grid bounded */
-        g->cs *= 1.5;
-        tot = 1;
-        for (int k = 0; k < 3; ++k) {
-            m[k] = ceil((hi[k] - lo[k]) / g->cs);
-            if (!(m[k] >= 1)) m[k] = 1;
-            tot *= m[k];
-        }
-    }
-    for (int k = 0; k < 3; ++k) g->nc[k] = (int)m[k]; /* <= tot, bounded above */
-    g->head = malloc((size_t)tot * sizeof(int));
-    g->cap = expect + 16;
-    g->next = malloc(g->cap * sizeof(int));
-    g->xr = malloc(4 * g->cap * sizeof(double));
-    if (!g->head || !g->next || !g->xr) return 0;
-    for (size_t c = 0; c < (size_t)tot; ++c) g->head[c] = -1;
-    return 1;
-}
-static void pgrid_free(pgrid *g) { free(g->head); free(g->next); free(g->xr); }
-static void pgrid_cell(const pgrid *g, const double *x, int c[3])
-{
-    for (int k = 0; k < 3; ++k) {
-        double q = floor((x[k] - g->lo[k]) / g->cs);
-        c[k] = q >= 0 ? (q < g->nc[k] ? (int)q : g->nc[k] - 1) : 0; /* clamped before the cast (NaN: 0) */
-    }
-}
-static int pgrid_add(pgrid *g, const double *x, double r)
-{
-    if (g->n == g->cap) {
-        size_t nc = 2 * g->cap;
-        int *a = realloc(g->next, nc * sizeof(int));
-        if (!a) return 0;
-        g->next = a;
-        double *b = realloc(g->xr, 4 * nc * sizeof(double));
-        if (!b) return 0;
-        g->xr = b;
-        g->cap = nc;
-    }
-    int c[3];
-    pgrid_cell(g, x, c);
-    size_t ci = (size_t)c[0] + (size_t)g->nc[0] * ((size_t)c[1] + (size_t)g->nc[1] * (size_t)c[2]);
-    double *p = g->xr + 4 * g->n;
-    p[0] = x[0]; p[1] = x[1]; p[2] = x[2]; p[3] = r;
-    g->next[g->n] = g->head[ci];
-    g->head[ci] = (int)g->n;
-    g->n++;
-    return 1;
-}
-/* 1 if a sphere (x, r) overlaps nothing in the grid (cell >= 2 r_max). */
-static int pgrid_free_at(const pgrid *g, const double *x, double r)
-{
-    int c[3];
-    pgrid_cell(g, x, c);
-    for (int dz = -1; dz <= 1; ++dz) {
-        int cz = c[2] + dz; if (cz < 0 || cz >= g->nc[2]) continue;
-        for (int dy = -1; dy <= 1; ++dy) {
-            int cy = c[1] + dy; if (cy < 0 || cy >= g->nc[1]) continue;
-            for (int dx = -1; dx <= 1; ++dx) {
-                int cx = c[0] + dx; if (cx < 0 || cx >= g->nc[0]) continue;
-                size_t ci = (size_t)cx + (size_t)g->nc[0] * ((size_t)cy + (size_t)g->nc[1] * (size_t)cz);
-                for (int it = g->head[ci]; it >= 0; it = g->next[it]) {
-                    const double *p = g->xr + 4 * (size_t)it;
-                    double d0 = x[0] - p[0], d1 = x[1] - p[1], d2 = x[2] - p[2], s = r + p[3];
-                    if (d0 * d0 + d1 * d1 + d2 * d2 < s * s) return 0;
-                }
-            }
-        }
-    }
-    return 1;
-}
 
 /* Region description for the generic filler. */
 typedef struct {
@@ -148,10 +59,10 @@ static dem_status fill(dem_world *w, const region *rg, size_t n, const dem_parti
     double amax = 0.5 * dmax;
     for (size_t i = 0; i < w->n; ++i) amax = fmax(amax, w->rad[i]);
     for (size_t i = 0; i < w->nshadow; ++i) amax = fmax(amax, w->shadow[4 * i + 3]);
-    pgrid g;
+    dem_pgrid g;
     double lo[3], hi[3];
     for (int k = 0; k < 3; ++k) { lo[k] = rg->lo[k] - 2 * amax; hi[k] = rg->hi[k] + 2 * amax; }
-    if (!pgrid_init(&g, lo, hi, 2.0 * amax, n + w->n + w->nshadow)) { pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
+    if (!dem_pgrid_init(&g, lo, hi, 2.0 * amax, n + w->n + w->nshadow)) { dem_pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
     /* the stored particles and the shadow ones (keep filter), in the order
        they were placed: the grid is the unfiltered fill's */
     for (size_t i = 0; i < w->n + w->nshadow; ++i) {
@@ -159,10 +70,10 @@ static dem_status fill(dem_world *w, const region *rg, size_t n, const dem_parti
         double r = i < w->n ? w->rad[i] : x[3];
         int in = 1;
         for (int k = 0; k < 3; ++k) in = in && x[k] > lo[k] && x[k] < hi[k];
-        if (in && !pgrid_add(&g, x, r)) { pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
+        if (in && !dem_pgrid_add(&g, x, r)) { dem_pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
     }
     s = dem_reserve(w, w->n + w->ng + (w->keep ? 0 : n));
-    if (s) { pgrid_free(&g); return s; }
+    if (s) { dem_pgrid_free(&g); return s; }
     size_t done = 0;
     for (size_t q = 0; q < n; ++q) {
         double d = dem_dist_draw(w, &t->diameter), rho = dem_dist_draw(w, &t->density), r = 0.5 * d;
@@ -172,10 +83,10 @@ static dem_status fill(dem_world *w, const region *rg, size_t n, const dem_parti
             int sm = sample(w, rg, r, x);
             if (sm == 0) break;
             if (sm < 0) continue;
-            ok = pgrid_free_at(&g, x, r);
+            ok = dem_pgrid_free_at(&g, x, r);
         }
         if (!ok) break;
-        if (!pgrid_add(&g, x, r)) { pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
+        if (!dem_pgrid_add(&g, x, r)) { dem_pgrid_free(&g); return DEM_FAIL(w, DEM_ERR_NOMEM, "fill grid"); }
         dem_particle p;
         memset(&p, 0, sizeof p);
         p.id = -1;
@@ -183,11 +94,11 @@ static dem_status fill(dem_world *w, const region *rg, size_t n, const dem_parti
         memcpy(p.v, t->velocity, sizeof p.v);
         p.radius = r; p.density = rho; p.material = t->material;
         s = w->keep && !w->keep(x, w->keep_user) ? dem_shadow_particle(w, &p) : dem_append_particle(w, &p);
-        if (s) { pgrid_free(&g); return s; }
+        if (s) { dem_pgrid_free(&g); return s; }
         w->inserted++;
         done++;
     }
-    pgrid_free(&g);
+    dem_pgrid_free(&g);
     if (inserted) *inserted = done;
     if (done < n)
         return DEM_FAIL(w, DEM_ERR_FULL, "placed %zu of %zu particles (%d attempts each)", done, n, DEM_FILL_TRIES);

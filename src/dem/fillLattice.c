@@ -16,16 +16,12 @@
   work and memory; the counting costs one layer, O(N^(2/3)).
   docs/demProperties.md, "arrangement lattice".
 \*---------------------------------------------------------------------------*/
-#include "dem_private.h"
+#include "fillFrame.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct {
-    double o[3], e[3][3]; /* origin, axes: e[0], e[1] in a layer, e[2] across */
-    double len[3];        /* extent along each axis from o */
-    double R;             /* cylinder: radius about o + t e[2] (0: box) */
-} frame;
+typedef dem_fill_frame frame;
 
 /* cells along one axis of extent L and their first centre */
 static long ncells(double L, double s, double *c0)
@@ -58,14 +54,6 @@ static size_t count_cells(const frame *f, double s, long *nl)
     return per;
 }
 
-static uint64_t mix64(uint64_t z)
-{
-    z += 0x9E3779B97F4A7C15ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
 typedef struct { uint64_t h; size_t j; } hkey;
 static int by_hash(const void *a, const void *b)
 {
@@ -83,20 +71,7 @@ static dem_status fill_lattice(dem_world *w, const frame *f, size_t n, const dem
     if (n == 0) return DEM_OK;
     /* the region must be free of particles placed before (this fill checks
        no overlaps with them) */
-    for (size_t i = 0; i < w->n + w->nshadow; ++i) {
-        const double *x = i < w->n ? w->x + 3 * i : w->shadow + 4 * (i - w->n);
-        double r = i < w->n ? w->rad[i] : x[3], q[3];
-        for (int k = 0; k < 3; ++k) q[k] = x[k] - f->o[k];
-        int in = 1;
-        for (int a = 0; a < 3; ++a) {
-            double c = dem_dot(q, f->e[a]);
-            in = in && c > -r && c < f->len[a] + r;
-        }
-        if (in)
-            return DEM_FAIL(w, DEM_ERR_RANGE, "%s: particle id %lld at (%g %g %g) lies in the region; a lattice "
-                            "fill needs a region free of particles placed before it", fn,
-                            (long long)(i < w->n ? w->id[i] : -1), x[0], x[1], x[2]);
-    }
+    if ((st = dem_fill_region_free(w, f, fn))) return st;
     /* the largest spacing with at least n cells (bisection; cells(s) is
        not strictly monotone, any s with enough cells will do) */
     long nl;
@@ -131,7 +106,7 @@ static dem_status fill_lattice(dem_world *w, const frame *f, size_t n, const dem
         for (long i = 0; i < m[0]; ++i)
             if (cell_in(f, c0[0] + i * s, c0[1] + j * s, s)) cells[c++] = (size_t)i + (size_t)m[0] * (size_t)j;
     const int64_t base = w->next_id;
-    for (size_t q = 0; q < per; ++q) { hk[q].h = mix64(w->cfg.seed ^ mix64((uint64_t)base + q)); hk[q].j = q; }
+    for (size_t q = 0; q < per; ++q) { hk[q].h = dem_mix64(w->cfg.seed ^ dem_mix64((uint64_t)base + q)); hk[q].j = q; }
     qsort(hk, per, sizeof *hk, by_hash);
     for (size_t q = 0; q < rest; ++q) last[hk[q].j] = 1;
     for (size_t q = 0, r = 0; q < per; ++q) rank[q] = last[q] ? r++ : 0;
@@ -139,17 +114,8 @@ static dem_status fill_lattice(dem_world *w, const frame *f, size_t n, const dem
 
     /* the layers and rows near the keep box (all without one) */
     long lo[3] = {0, 0, 0}, hi[3] = {m[0] - 1, m[1] - 1, (long)full - (rest ? 0 : 1)};
-    if (w->keep && w->keep_box_set) {
-        double mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
-        for (int corner = 0; corner < 8; ++corner) {
-            double p[3], q[3];
-            for (int k = 0; k < 3; ++k) p[k] = (corner >> k & 1) ? w->keep_hi[k] : w->keep_lo[k];
-            for (int k = 0; k < 3; ++k) q[k] = p[k] - f->o[k];
-            for (int a = 0; a < 3; ++a) {
-                double v = dem_dot(q, f->e[a]);
-                mn[a] = fmin(mn[a], v); mx[a] = fmax(mx[a], v);
-            }
-        }
+    double mn[3], mx[3];
+    if (dem_fill_keep_extent(w, f, mn, mx)) {
         for (int a = 0; a < 3; ++a) {
             /* cells whose centre is within one spacing of the box */
             double l = fmax(floor((mn[a] - c0[a]) / s) - 1, (double)lo[a]);
@@ -169,64 +135,34 @@ static dem_status fill_lattice(dem_world *w, const frame *f, size_t n, const dem
             if (i < lo[0] || i > hi[0] || j < lo[1] || j > hi[1]) continue;
             if (partial && !last[q]) continue;
             const size_t g = (size_t)k * per + (partial ? rank[q] : q);
-            dem_rng_seed(w, mix64(w->cfg.seed) ^ mix64((uint64_t)base + g + 0x5bd1e995ull));
+            dem_rng_seed(w, dem_mix64(w->cfg.seed) ^ dem_mix64((uint64_t)base + g + 0x5bd1e995ull));
             const double d = dem_dist_draw(w, &t->diameter), rho = dem_dist_draw(w, &t->density);
             const double cc[3] = {c0[0] + i * s, c0[1] + j * s, c0[2] + k * s};
-            dem_particle p;
-            memset(&p, 0, sizeof p);
-            for (int a = 0; a < 3; ++a) {
-                const double off = cc[a] + (2 * dem_rng_uniform(w) - 1) * 0.5 * (s - d);
-                for (int x = 0; x < 3; ++x) p.x[x] += off * f->e[a][x];
-            }
-            for (int x = 0; x < 3; ++x) p.x[x] += f->o[x];
-            if (w->keep && !w->keep(p.x, w->keep_user)) continue;
-            p.id = base + (int64_t)g;
-            memcpy(p.v, t->velocity, sizeof p.v);
-            p.radius = 0.5 * d; p.density = rho; p.material = t->material;
-            st = dem_append_particle(w, &p);
+            double off[3], x[3];
+            for (int a = 0; a < 3; ++a) off[a] = cc[a] + (2 * dem_rng_uniform(w) - 1) * 0.5 * (s - d);
+            dem_fill_frame_point(f, off, x);
+            if (w->keep && !w->keep(x, w->keep_user)) continue;
+            st = dem_fill_append(w, t, base + (int64_t)g, x, 0.5 * d, rho);
         }
     }
     memcpy(w->rng, saved, sizeof saved);
     free(cells); free(last); free(rank);
     if (st) return st;
-    if (w->next_id < base + (int64_t)n) w->next_id = base + (int64_t)n;
-    w->inserted += (int64_t)n;
-    if (inserted) *inserted = n;
+    dem_fill_done(w, base, n, inserted);
     return DEM_OK;
 }
 
 dem_status dem_world_fill_lattice_box(dem_world *w, const double lo[3], const double hi[3], size_t n,
-                                      const dem_particle_template *t, size_t *inserted)
+                                     const dem_particle_template *t, size_t *inserted)
 {
-    if (!w) return DEM_ERR_ARG;
-    DEM_NEED(w, lo, "fill_lattice_box");
-    DEM_NEED(w, hi, "fill_lattice_box");
-    frame f;
-    memset(&f, 0, sizeof f);
-    for (int k = 0; k < 3; ++k) {
-        if (!(hi[k] > lo[k]) || !isfinite(hi[k] - lo[k]))
-            return DEM_FAIL(w, DEM_ERR_RANGE, "fill_lattice_box: lo[%d] = %g, hi[%d] = %g; need finite lo < hi "
-                            "with a finite difference", k, lo[k], k, hi[k]);
-        f.o[k] = lo[k]; f.e[k][k] = 1; f.len[k] = hi[k] - lo[k];
-    }
-    return fill_lattice(w, &f, n, t, inserted, "fill_lattice_box");
+    return dem_fill_in_box(w, "fill_lattice_box", fill_lattice, lo, hi, n, t, inserted);
 }
 
 dem_status dem_world_fill_lattice_cylinder(dem_world *w, const double base[3], const double axis[3],
-                                           double radius, double length, size_t n,
-                                           const dem_particle_template *t, size_t *inserted)
+                                          double radius, double length, size_t n,
+                                          const dem_particle_template *t, size_t *inserted)
 {
-    if (!w) return DEM_ERR_ARG;
-    frame f;
-    memset(&f, 0, sizeof f);
-    dem_status s = dem_cylinder_frame(w, "fill_lattice_cylinder", base, axis, radius, length,
-                                      f.e[2], f.e[0], f.e[1]);
-    if (s) return s;
-    /* o: the corner of the square around the base disc */
-    for (int k = 0; k < 3; ++k) f.o[k] = base[k] - radius * (f.e[0][k] + f.e[1][k]);
-    f.len[0] = f.len[1] = 2 * radius; f.len[2] = length;
-    f.R = radius;
-    return fill_lattice(w, &f, n, t, inserted, "fill_lattice_cylinder");
+    return dem_fill_in_cylinder(w, "fill_lattice_cylinder", fill_lattice, base, axis, radius, length, n, t, inserted);
 }
 
 dem_status dem_world_set_keep_box(dem_world *w, const double lo[3], const double hi[3])

@@ -118,4 +118,18 @@ static inline dem_particle test_particle(double x, double y, double z, double vx
     return p;
 }
 
+/* pairs of owned particles that overlap (all pairs: small sets only) */
+static inline int test_overlapping_pairs(const dem_arrays *a)
+{
+    int bad = 0;
+    for (size_t i = 0; i < a->n_owned; ++i)
+        for (size_t j = i + 1; j < a->n_owned; ++j) {
+            double d2 = 0;
+            for (int k = 0; k < 3; ++k) { double d = a->x[3 * i + k] - a->x[3 * j + k]; d2 += d * d; }
+            double s = a->radius[i] + a->radius[j];
+            bad += d2 < s * s;
+        }
+    return bad;
+}
+
 #endif

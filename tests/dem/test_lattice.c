@@ -61,26 +61,13 @@ static dem_world *make(int *slab)
     return w;
 }
 
-static int overlaps(const dem_arrays *a)
-{
-    int bad = 0;
-    for (size_t i = 0; i < a->n_owned; ++i)
-        for (size_t j = i + 1; j < a->n_owned; ++j) {
-            double d2 = 0;
-            for (int k = 0; k < 3; ++k) { double d = a->x[3 * i + k] - a->x[3 * j + k]; d2 += d * d; }
-            double s = a->radius[i] + a->radius[j];
-            bad += d2 < s * s;
-        }
-    return bad;
-}
-
 int main(void)
 {
     dem_world *all = make(NULL);
     dem_arrays A;
     TRY(all, dem_world_arrays(all, &A));
     check_abs("lattice: particles", (double)A.n_owned, NBOX + NCYL, 0);
-    check_abs("lattice: overlapping pairs", (double)overlaps(&A), 0, 0);
+    check_abs("lattice: overlapping pairs", (double)test_overlapping_pairs(&A), 0, 0);
     int outside = 0, badid = 0;
     double zmin = 1, zmax = -1;
     for (size_t i = 0; i < A.n_owned; ++i) {

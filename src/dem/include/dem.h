@@ -392,6 +392,27 @@ dem_status dem_world_fill_lattice_cylinder(dem_world *w, const double base[3], c
                                            double radius, double length, size_t n,
                                            const dem_particle_template *t, size_t *inserted);
 
+/** Added: place n particles at random in the box or cylinder, block by
+ *  block: the centres' region (the region less the largest radius) cut
+ *  into blocks of about 64 particles and edge at least the largest
+ *  diameter; each block gets the floor or ceiling of its share of n
+ *  (stratified rounding) and places them by random sequential addition
+ *  (up to 10 000 random positions each) from a stream
+ *  of (seed, first id, block); blocks in eight colours by index parity, so
+ *  a block depends on blocks at most seven away.  Every particle is a
+ *  function of (seed, first id, n, region): with a keep filter and keep
+ *  box a processor places only the blocks near its box (no shadow list;
+ *  O(N/P) per processor) and gets the serial particles there.  The region
+ *  must hold no particle placed before (DEM_ERR_RANGE naming one);
+ *  DEM_ERR_FULL naming the block that could not place its share (the
+ *  particles placed before it stay, as with dem_world_fill_box).  The
+ *  world's own random stream is left as it was. */
+dem_status dem_world_fill_blocks_box(dem_world *w, const double lo[3], const double hi[3], size_t n,
+                                     const dem_particle_template *t, size_t *inserted);
+dem_status dem_world_fill_blocks_cylinder(dem_world *w, const double base[3], const double axis[3],
+                                          double radius, double length, size_t n,
+                                          const dem_particle_template *t, size_t *inserted);
+
 typedef enum { DEM_RATE_NUMBER, DEM_RATE_MASS } dem_rate_kind;
 /** Stream insertion through a planar polygon (nv vertices, 3*nv doubles) at a
  *  rate [1/s or kg/s] between t_start and t_end, with the template velocity. */

@@ -362,7 +362,7 @@ bool Foam::demCoupling::checkDictionary
                 , num("radius", kind::Scalar, 0, inf, true, false)
                 , num("length", kind::Scalar, 0, inf, true, false)
                 , any("insideMesh", kind::Bool)
-                , choice("arrangement", wordList({"random", "lattice"}))
+                , choice("arrangement", wordList({"random", "lattice", "randomBlocks"}))
                 , num("number", kind::Label, 1, inf, false, false)
                 , any("positions", kind::List)
                 , dist("diameter"), dist("density")
@@ -408,19 +408,24 @@ bool Foam::demCoupling::checkDictionary
             {
                 chk.fail(d, sc, "arrangement", d.get<word>("arrangement"), "only for type box or cylinder");
             }
-            const bool lattice =
-                d.getOrDefault<word>("arrangement", "random") == "lattice";
+            // lattice and randomBlocks compute each particle from its index:
+            // a processor keeps only those near it
+            const word arrangement(d.getOrDefault<word>("arrangement", "random"));
+            const bool lattice = arrangement != "random";
             if (lattice && d.getOrDefault<bool>("insideMesh", false))
             {
-                chk.fail(d, sc, "insideMesh", "yes", "not with arrangement lattice (the lattice fills the box or cylinder itself; use arrangement random to take the mesh's shape)");
+                chk.fail(d, sc, "insideMesh", "yes", "not with arrangement " + arrangement + " (it fills the box or cylinder itself; use arrangement random to take the mesh's shape)");
             }
             if (!lattice && type != "list" && Pstream::parRun() && latticeBefore != "")
             {
                 // every processor draws a random fill against all particles
                 // before it, and a lattice fill keeps only those near it
-                chk.fail(d, sc, "arrangement", d.getOrDefault<word>("arrangement", "random"), "a random fill after the lattice fill " + latticeBefore + " in a decomposed run; put the lattice entries after the random ones, or give this one arrangement lattice");
+                chk.fail(d, sc, "arrangement", arrangement, "a random fill after the " + latticeBefore + " in a decomposed run; put the lattice and randomBlocks entries after the random ones, or give this one arrangement lattice or randomBlocks");
             }
-            if (lattice && latticeBefore == "") latticeBefore = e.keyword();
+            if (lattice && latticeBefore == "")
+            {
+                latticeBefore = arrangement + " fill " + e.keyword();
+            }
             if
             (
                 type != "list" && Pstream::parRun()

@@ -271,21 +271,33 @@ void Foam::particleInsertion::addInitialParticles()
             );
             const point lo(region.bounds().min()), hi(region.bounds().max());
             size_t inserted = 0;
-            const bool lattice =
-                d.getOrDefault<word>("arrangement", "random") == "lattice";
+            const word arrangement
+            (
+                d.getOrDefault<word>("arrangement", "random")
+            );
+            const bool lattice = arrangement == "lattice";
+            const bool blocks = arrangement == "randomBlocks";
             dem_status s = DEM_OK;
-            if (lattice && type == "box")
+            // lattice and randomBlocks: each particle computed from its
+            // index (the same arguments for both)
+            const auto boxFill =
+                blocks ? &dem_world_fill_blocks_box : &dem_world_fill_lattice_box;
+            const auto cylinderFill =
+                blocks
+              ? &dem_world_fill_blocks_cylinder
+              : &dem_world_fill_lattice_cylinder;
+            if ((lattice || blocks) && type == "box")
             {
-                s = dem_world_fill_lattice_box
+                s = boxFill
                 (
                     world_, lo.cdata(), hi.cdata(), size_t(n), &t, &inserted
                 );
             }
-            else if (lattice)
+            else if (lattice || blocks)
             {
                 const point base(d.get<point>("base"));
                 const vector axis(d.get<vector>("axis"));
-                s = dem_world_fill_lattice_cylinder
+                s = cylinderFill
                 (
                     world_, base.cdata(), axis.cdata(),
                     d.get<scalar>("radius"), d.get<scalar>("length"),
@@ -306,18 +318,26 @@ void Foam::particleInsertion::addInitialParticles()
                 FatalIOErrorInFunction(d)
                     << "initialParticles/" << e.keyword() << " in "
                     << d.name() << ": "
-                    << (lattice ? "not all " : "only " + Foam::name(label(inserted)) + " of ")
+                    << (lattice || blocks ? "not all " : "only " + Foam::name(label(inserted)) + " of ")
                     << n << " particles fit into the "
                     << region.describe().c_str()
                     << (lattice ? " (arrangement lattice: one cubic cell of the largest diameter each; "
-                        + std::string(world_.lastError()) + ")" : std::string())
+                        + std::string(world_.lastError()) + ")"
+                      : blocks ? " (arrangement randomBlocks: " + std::string(world_.lastError()) + ")"
+                      : std::string())
                     << "; enlarge the region or lower number"
                     << exit(FatalIOError);
             }
-            world_.check(s, lattice ? "dem_world_fill_lattice" : "dem_world_fill_box");
+            world_.check
+            (
+                s,
+                lattice ? "dem_world_fill_lattice"
+              : blocks ? "dem_world_fill_blocks" : "dem_world_fill_box"
+            );
             Info<< "demCoupling: " << e.keyword() << ": " << label(inserted)
                 << " particles in " << region.describe().c_str()
-                << (lattice ? " (lattice)" : "") << endl;
+                << (lattice ? " (lattice)" : blocks ? " (randomBlocks)" : "")
+                << endl;
         }
         else
         {
