@@ -105,31 +105,6 @@ static dem_status fill(dem_world *w, const region *rg, size_t n, const dem_parti
     return DEM_OK;
 }
 
-dem_status dem_shadow_particle(dem_world *w, const dem_particle *p)
-{
-    dem_status s = dem_particle_check(w, p, "add particle (not kept)");
-    if (s) return s;
-    if (w->nshadow == w->capshadow) {
-        size_t nc = w->capshadow ? w->capshadow + w->capshadow / 2 : 1024;
-        double *a = realloc(w->shadow, 4 * nc * sizeof(double));
-        if (!a) return DEM_FAIL(w, DEM_ERR_NOMEM, "keep filter: shadow list of %zu particles", nc);
-        w->shadow = a; w->capshadow = nc;
-    }
-    int64_t id = p->id >= 0 ? p->id : w->next_id;
-    if (id >= w->next_id) w->next_id = id + 1;
-    double *q = w->shadow + 4 * w->nshadow++;
-    q[0] = p->x[0]; q[1] = p->x[1]; q[2] = p->x[2]; q[3] = p->radius;
-    return DEM_OK;
-}
-
-dem_status dem_world_set_keep_filter(dem_world *w, dem_inside_fn keep, void *user)
-{
-    if (!w) return DEM_ERR_ARG;
-    w->keep = keep; w->keep_user = user;
-    if (!keep) { free(w->shadow); w->shadow = NULL; w->nshadow = w->capshadow = 0; w->keep_box_set = 0; }
-    return DEM_OK;
-}
-
 dem_status dem_world_fill_box(dem_world *w, const double lo[3], const double hi[3],
                               dem_inside_fn inside, void *user, size_t n,
                               const dem_particle_template *t, size_t *inserted)

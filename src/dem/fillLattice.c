@@ -164,13 +164,3 @@ dem_status dem_world_fill_lattice_cylinder(dem_world *w, const double base[3], c
 {
     return dem_fill_in_cylinder(w, "fill_lattice_cylinder", fill_lattice, base, axis, radius, length, n, t, inserted);
 }
-
-dem_status dem_world_set_keep_box(dem_world *w, const double lo[3], const double hi[3])
-{
-    if (!w) return DEM_ERR_ARG;
-    if (!lo || !hi) { w->keep_box_set = 0; return DEM_OK; }
-    memcpy(w->keep_lo, lo, sizeof w->keep_lo);
-    memcpy(w->keep_hi, hi, sizeof w->keep_hi);
-    w->keep_box_set = 1;
-    return DEM_OK;
-}

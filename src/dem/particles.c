@@ -379,3 +379,22 @@ dem_status dem_world_arrays(dem_world *w, dem_arrays *a)
     for (int k = 0; k < DEM_N_TAGS; ++k) a->tag[k] = w->tag[k];
     return DEM_OK;
 }
+
+/* a particle the keep filter refuses: its id, centre and radius only
+   (docs/parallel.md, "Initial particles and settling") */
+dem_status dem_shadow_particle(dem_world *w, const dem_particle *p)
+{
+    dem_status s = dem_particle_check(w, p, "add particle (not kept)");
+    if (s) return s;
+    if (w->nshadow == w->capshadow) {
+        size_t nc = w->capshadow ? w->capshadow + w->capshadow / 2 : 1024;
+        double *a = realloc(w->shadow, 4 * nc * sizeof(double));
+        if (!a) return DEM_FAIL(w, DEM_ERR_NOMEM, "keep filter: shadow list of %zu particles", nc);
+        w->shadow = a; w->capshadow = nc;
+    }
+    int64_t id = p->id >= 0 ? p->id : w->next_id;
+    if (id >= w->next_id) w->next_id = id + 1;
+    double *q = w->shadow + 4 * w->nshadow++;
+    q[0] = p->x[0]; q[1] = p->x[1]; q[2] = p->x[2]; q[3] = p->radius;
+    return DEM_OK;
+}
