@@ -306,6 +306,16 @@ void Foam::particleInsertion::addInitialParticles()
             }
             else
             {
+                if (Pstream::parRun() && n >= 100000)
+                {
+                    // the sequential draw is the one part of the set-up
+                    // that every processor repeats whole
+                    Info<< "demCoupling: " << e.keyword() << ": every "
+                        << "processor draws all " << n << " particles of "
+                        << "this random fill; arrangement randomBlocks "
+                        << "draws only those near each processor "
+                        << "(docs/demProperties.md)" << endl;
+                }
                 s = dem_world_fill_box
                 (
                     world_, lo.cdata(), hi.cdata(), &insertionRegion::inside,
