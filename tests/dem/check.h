@@ -118,6 +118,18 @@ static inline dem_particle test_particle(double x, double y, double z, double vx
     return p;
 }
 
+/* the fill tests' particles: diameter uniform in 1.6-2.4 mm, density
+   normal about 2500 kg/m3 (sd 100) */
+static inline dem_particle_template test_fill_template(int mid)
+{
+    dem_particle_template t;
+    memset(&t, 0, sizeof t);
+    t.diameter.kind = DEM_DIST_UNIFORM; t.diameter.a = 1.6e-3; t.diameter.b = 2.4e-3;
+    t.density.kind = DEM_DIST_NORMAL; t.density.a = 2500; t.density.b = 100;
+    t.material = mid;
+    return t;
+}
+
 /* pairs of owned particles that overlap (all pairs: small sets only) */
 static inline int test_overlapping_pairs(const dem_arrays *a)
 {

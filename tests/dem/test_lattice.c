@@ -24,16 +24,6 @@ static int keep_slab(const double x[3], void *user)
     return at == slab;
 }
 
-static dem_particle_template tmpl(int mid)
-{
-    dem_particle_template t;
-    memset(&t, 0, sizeof t);
-    t.diameter.kind = DEM_DIST_UNIFORM; t.diameter.a = 1.6e-3; t.diameter.b = 2.4e-3;
-    t.density.kind = DEM_DIST_NORMAL; t.density.a = 2500; t.density.b = 100;
-    t.material = mid;
-    return t;
-}
-
 static const double blo[3] = {0, 0, 0}, bhi[3] = {0.1, 0.05, 0.08};
 static const double cbase[3] = {0.05, 0.02, 0.01}, caxis[3] = {0, 1, 1};
 static const double cR = 0.015, cL = 0.05;
@@ -51,7 +41,7 @@ static dem_world *make(int *slab)
         double lo[3] = {*slab == 0 ? -1 : cut[*slab - 1], -1, -1}, hi[3] = {*slab == 2 ? 1 : cut[*slab], 1, 1};
         TRY(w, dem_world_set_keep_box(w, lo, hi));
     }
-    dem_particle_template t = tmpl(mid);
+    dem_particle_template t = test_fill_template(mid);
     size_t got = 0;
     TRY(w, dem_world_fill_lattice_box(w, blo, bhi, NBOX, &t, &got));
     check_abs("lattice box: inserted count", (double)got, NBOX, 0);
@@ -123,7 +113,7 @@ int main(void)
         dem_material m = test_material(1e7, 0.3, 0.3, 0, 0.5);
         int mid;
         TRY(q, dem_world_add_material(q, &m, &mid));
-        dem_particle_template t = tmpl(mid);
+        dem_particle_template t = test_fill_template(mid);
         const double lo[3] = {-0.1, -0.1, -0.1}, hi[3] = {-0.05, -0.05, -0.05};
         size_t got;
         TRY(p, dem_world_fill_box(p, lo, hi, NULL, NULL, 50, &t, &got));
