@@ -130,6 +130,7 @@ Foam::demCoupling::demCoupling
     cellMeanDrag_(false),
     frozen_(dict_.getOrDefault<bool>("frozen", false)),
     epsMin_(dict_.getOrDefault<scalar>("epsMin", 0.1)),
+    epsRelaxTime_(dict_.getOrDefault<scalar>("voidageRelaxationTime", 0)),
     demDt_(0),
     dragUpdateInterval_(0),
     nSubCycles_(0),
@@ -295,6 +296,7 @@ Foam::demCoupling::demCoupling
     computeWeights();
     computeVoidage();
     eps_.oldTime() == eps_;
+    startRelaxedVoidage();
     if (!failure_.empty())
     {
         FatalErrorInFunction

@@ -155,6 +155,7 @@ void Foam::demCoupling::evolveFluid
     cloud_.locate(failure_);
     computeWeights();
     computeVoidage();
+    relaxVoidage();
 
     bed_.sample(world_.arrays(), eps_);
     bed_.append();

@@ -167,6 +167,7 @@ bool Foam::demCoupling::checkDictionary
         choice("dragScheme", wordList({"perParticle", "cellMean"})),
         choice("voidageModel", voidages),
         num("epsMin", kind::Scalar, 0, 1, true, true),
+        num("voidageRelaxationTime", kind::Scalar, 0, inf, false, false),
         num("etaWarning", kind::Scalar, 0, inf, false, false),
         num("insertionRampTime", kind::Scalar, 0, inf, false, false),
         any("frozen", kind::Bool),

@@ -7,7 +7,8 @@ Description
     The particles' volume on the mesh (step 5 of evolve(), demCoupling.H):
     their (cell, weight) lists, the voidage eps and the cell-mean particle
     velocity Up, a new particle's volume weighted by its insertion ramp
-    (particleInsertion).
+    (particleInsertion); the continuity's voidage relaxed in time
+    (voidageRelaxationTime).
 
 \*---------------------------------------------------------------------------*/
 
@@ -78,6 +79,50 @@ void Foam::demCoupling::computeVoidage()
     const dimensionedScalar one("one", dimless, 1.0);
     if (formulation_->pressureTimesVoidage()) pCoeff_ = eps_; else pCoeff_ = one;
     if (formulation_->viscousTimesVoidage()) tauCoeff_ = eps_; else tauCoeff_ = one;
+}
+
+
+void Foam::demCoupling::startRelaxedVoidage()
+{
+    if (epsRelaxTime_ <= 0) return;
+    IOobject io
+    (
+        "epsRelaxed",
+        mesh_.time().timeName(),
+        mesh_,
+        IOobject::MUST_READ,
+        IOobject::AUTO_WRITE
+    );
+    if (io.typeHeaderOk<volScalarField>(true))
+    {
+        // a restart goes on from the relaxed state it wrote
+        epsRelaxed_.reset(new volScalarField(io, mesh_));
+    }
+    else
+    {
+        io.readOpt() = IOobject::NO_READ;
+        epsRelaxed_.reset(new volScalarField(io, eps_));
+        Info<< "demCoupling: voidageRelaxationTime " << epsRelaxTime_
+            << " s: no epsRelaxed in " << mesh_.time().timeName()
+            << "; it starts from the particles' eps" << endl;
+    }
+    epsRelaxed_->oldTime();
+}
+
+
+void Foam::demCoupling::relaxVoidage()
+{
+    if (!epsRelaxed_.valid()) return;
+    // implicit Euler of d(epsR)/dt = (eps - epsR)/tau: a convex combination
+    // of the old epsR and the new eps, so epsMin <= epsR <= 1 stays
+    volScalarField& epsR = epsRelaxed_();
+    epsR.storeOldTimes();
+    const scalar dt = mesh_.time().deltaTValue();
+    const scalar a = dt/(epsRelaxTime_ + dt);
+    epsR.primitiveFieldRef() =
+        epsR.oldTime().primitiveField()
+      + a*(eps_.primitiveField() - epsR.oldTime().primitiveField());
+    epsR.correctBoundaryConditions();
 }
 
 
