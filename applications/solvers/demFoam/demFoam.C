@@ -105,22 +105,40 @@ int main(int argc, char *argv[])
         epsf = fvc::interpolate(eps);
         epsPhi = epsf*phi;
 
-        // --- Pressure-velocity PIMPLE corrector loop
-        while (pimple.loop())
+        #include "runControlInjectSolve.H"
+
+        // --- Pressure-velocity PIMPLE corrector loop (runControl.H,
+        // nonFiniteSolution: a NaN that stops OpenFOAM's record of the
+        // solvers' residuals ends the step as a failure)
+        std::string solveFailure;
+        const bool solveThrowing = FatalIOError.throwExceptions(true);
+        try
         {
-            #include "UEqn.H"
-
-            // --- Pressure corrector loop
-            while (pimple.correct())
+            while (pimple.loop())
             {
-                #include "pEqn.H"
-            }
+                #include "UEqn.H"
 
-            if (pimple.turbCorr())
-            {
-                laminarTransport.correct();
-                turbulence->correct();
+                // --- Pressure corrector loop
+                while (pimple.correct())
+                {
+                    #include "pEqn.H"
+                }
+
+                if (pimple.turbCorr())
+                {
+                    laminarTransport.correct();
+                    turbulence->correct();
+                }
             }
+        }
+        catch (const IOerror& e)
+        {
+            solveFailure = nonFiniteSolution(e, solveThrowing);
+        }
+        FatalIOError.throwExceptions(solveThrowing);
+        if (!solveFailure.empty())
+        {
+            writeLastGood(solveFailure);
         }
 
         #include "runControlFluidCheck.H"

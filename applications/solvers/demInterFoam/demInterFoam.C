@@ -119,23 +119,41 @@ int main(int argc, char *argv[])
         epsf = fvc::interpolate(eps);
         epsPhi = epsf*phi;
 
-        // --- Pressure-velocity PIMPLE corrector loop
-        while (pimple.loop())
+        #include "runControlInjectSolve.H"
+
+        // --- Pressure-velocity PIMPLE corrector loop (runControl.H,
+        // nonFiniteSolution: a NaN that stops OpenFOAM's record of the
+        // solvers' residuals ends the step as a failure)
+        std::string solveFailure;
+        const bool solveThrowing = FatalIOError.throwExceptions(true);
+        try
         {
-            #include "alphaEqn.H"
-
-            #include "UEqn.H"
-
-            // --- Pressure corrector loop
-            while (pimple.correct())
+            while (pimple.loop())
             {
-                #include "pEqn.H"
-            }
+                #include "alphaEqn.H"
 
-            if (pimple.turbCorr())
-            {
-                turbulence->correct();
+                #include "UEqn.H"
+
+                // --- Pressure corrector loop
+                while (pimple.correct())
+                {
+                    #include "pEqn.H"
+                }
+
+                if (pimple.turbCorr())
+                {
+                    turbulence->correct();
+                }
             }
+        }
+        catch (const IOerror& e)
+        {
+            solveFailure = nonFiniteSolution(e, solveThrowing);
+        }
+        FatalIOError.throwExceptions(solveThrowing);
+        if (!solveFailure.empty())
+        {
+            writeLastGood(solveFailure);
         }
 
         #include "runControlFluidCheck.H"
