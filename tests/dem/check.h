@@ -130,6 +130,15 @@ static inline dem_particle_template test_fill_template(int mid)
     return t;
 }
 
+/* the fill tests' world: Hertz-Mindlin, dt 1e-6 s, one material (mid) */
+static inline dem_world *test_fill_world(int *mid)
+{
+    dem_world *w = test_world(DEM_CONTACT_HERTZ_MINDLIN, 1e-6, NULL, 0.2);
+    dem_material m = test_material(1e7, 0.3, 0.3, 0, 0.5);
+    TRY(w, dem_world_add_material(w, &m, mid));
+    return w;
+}
+
 /* pairs of owned particles that overlap (all pairs: small sets only) */
 static inline int test_overlapping_pairs(const dem_arrays *a)
 {
@@ -142,6 +151,87 @@ static inline int test_overlapping_pairs(const dem_arrays *a)
             bad += d2 < s * s;
         }
     return bad;
+}
+
+/* keep filter of the fill tests: a processor of a decomposed set-up that
+   keeps the slab s of the x-cuts cut[0..ncut-1] (s = 0: x < cut[0]; s:
+   cut[s-1] <= x < cut[s]; s = ncut: x >= cut[ncut-1]) */
+typedef struct { const double *cut; int ncut, slab; } test_slab;
+
+static inline int test_keep_slab(const double x[3], void *user)
+{
+    const test_slab *s = (const test_slab *)user;
+    int at = 0;
+    while (at < s->ncut && x[0] >= s->cut[at]) ++at;
+    return at == s->slab;
+}
+
+/* the slab's keep filter and its keep box (lo, hi: the rest of the box) */
+static inline void test_set_keep_slab(dem_world *w, test_slab *s)
+{
+    TRY(w, dem_world_set_keep_filter(w, test_keep_slab, s));
+    double lo[3] = {s->slab == 0 ? -1 : s->cut[s->slab - 1], -1, -1};
+    double hi[3] = {s->slab == s->ncut ? 1 : s->cut[s->slab], 1, 1};
+    TRY(w, dem_world_set_keep_box(w, lo, hi));
+}
+
+/* the worlds make(slab) of every slab of cut (keep-filtered fills) hold
+   together exactly the unfiltered particles A (ids 0..n-1), bit for bit,
+   each only its own slab's, and each counts all n inserted */
+static inline void test_keep_slabs(const char *what, dem_world *(*make)(test_slab *), const double *cut,
+                                   int ncut, const dem_arrays *A)
+{
+    size_t *at = (size_t *)malloc((A->n_owned + 1) * sizeof *at);
+    for (size_t i = 0; i < A->n_owned; ++i)
+        if (A->id[i] >= 0 && (size_t)A->id[i] < A->n_owned) at[A->id[i]] = i;
+    size_t total = 0;
+    int differ = 0, wrongSlab = 0;
+    char name[200];
+    for (int s = 0; s <= ncut; ++s) {
+        test_slab slab = {cut, ncut, s};
+        dem_world *w = make(&slab);
+        dem_arrays B;
+        TRY(w, dem_world_arrays(w, &B));
+        total += B.n_owned;
+        for (size_t i = 0; i < B.n_owned; ++i) {
+            const int64_t id = B.id[i];
+            if (id < 0 || id >= (int64_t)A->n_owned) { differ++; continue; }
+            const size_t k = at[id];
+            wrongSlab += !test_keep_slab(B.x + 3 * i, &slab);
+            differ += memcmp(B.x + 3 * i, A->x + 3 * k, 3 * sizeof(double)) != 0
+                      || B.radius[i] != A->radius[k] || B.density[i] != A->density[k];
+        }
+        dem_stats st;
+        TRY(w, dem_world_stats(w, &st));
+        snprintf(name, sizeof name, "%s keep filter: inserted count of a filtered world", what);
+        check_abs(name, (double)st.inserted, (double)A->n_owned, 0);
+        dem_world_destroy(&w);
+    }
+    free(at);
+    snprintf(name, sizeof name, "%s keep filter: particles of the %d filtered worlds", what, ncut + 1);
+    check_abs(name, (double)total, (double)A->n_owned, 0);
+    snprintf(name, sizeof name, "%s keep filter: particles differing from the unfiltered ones (bit for bit)", what);
+    check_abs(name, (double)differ, 0, 0);
+    snprintf(name, sizeof name, "%s keep filter: particles in another world's slab", what);
+    check_abs(name, (double)wrongSlab, 0, 0);
+}
+
+/* the world's own random stream is untouched by the fills in p (before
+   particles): a random fill of 50 in [lo, hi] after them equals the same
+   fill in the fresh world q (material mid) */
+static inline void test_stream_untouched(const char *name, dem_world *p, dem_world *q, int mid, size_t before,
+                                         const double lo[3], const double hi[3])
+{
+    dem_particle_template t = test_fill_template(mid);
+    size_t got;
+    TRY(p, dem_world_fill_box(p, lo, hi, NULL, NULL, 50, &t, &got));
+    TRY(q, dem_world_fill_box(q, lo, hi, NULL, NULL, 50, &t, &got));
+    dem_arrays P, Q;
+    TRY(p, dem_world_arrays(p, &P));
+    TRY(q, dem_world_arrays(q, &Q));
+    int same = Q.n_owned == 50 && P.n_owned == before + 50
+               && !memcmp(P.x + 3 * before, Q.x, 3 * 50 * sizeof(double));
+    check_abs(name, (double)same, 1, 0);
 }
 
 #endif

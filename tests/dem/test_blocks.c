@@ -21,36 +21,17 @@
 
 static const double cut[3] = {0.024, 0.051, 0.113};
 
-static int keep_slab(const double x[3], void *user)
-{
-    const int slab = *(const int *)user;
-    const int at = x[0] < cut[0] ? 0 : x[0] < cut[1] ? 1 : x[0] < cut[2] ? 2 : 3;
-    return at == slab;
-}
-
 static const double blo[3] = {0, 0, 0}, bhi[3] = {0.1, 0.05, 0.08};
 static const double cbase[3] = {0.15, 0.02, 0.01}, caxis[3] = {0, 1, 1};
 static const double cR = 0.015, cL = 0.05;
 enum { NBOX = 4000, NCYL = 1500 };
 
-static dem_world *world(int *mid)
-{
-    dem_world *w = test_world(DEM_CONTACT_HERTZ_MINDLIN, 1e-6, NULL, 0.2);
-    dem_material m = test_material(1e7, 0.3, 0.3, 0, 0.5);
-    TRY(w, dem_world_add_material(w, &m, mid));
-    return w;
-}
-
 /* a world with a box and a cylinder fill in blocks (slab: keep filter) */
-static dem_world *make(int *slab)
+static dem_world *make(test_slab *slab)
 {
     int mid;
-    dem_world *w = world(&mid);
-    if (slab) {
-        TRY(w, dem_world_set_keep_filter(w, keep_slab, slab));
-        double lo[3] = {*slab == 0 ? -1 : cut[*slab - 1], -1, -1}, hi[3] = {*slab == 3 ? 1 : cut[*slab], 1, 1};
-        TRY(w, dem_world_set_keep_box(w, lo, hi));
-    }
+    dem_world *w = test_fill_world(&mid);
+    if (slab) test_set_keep_slab(w, slab);
     dem_particle_template t = test_fill_template(mid);
     size_t got = 0;
     TRY(w, dem_world_fill_blocks_box(w, blo, bhi, NBOX, &t, &got));
@@ -68,7 +49,7 @@ int main(void)
     check_abs("blocks: particles", (double)A.n_owned, NBOX + NCYL, 0);
     check_abs("blocks: overlapping pairs", (double)test_overlapping_pairs(&A), 0, 0);
     int outside = 0;
-    size_t low = 0, inner = 0, *at = calloc(NBOX + NCYL, sizeof *at);
+    size_t low = 0, inner = 0;
     unsigned char *seen = calloc(NBOX + NCYL, 1);
     int badid = 0;
     const double al = sqrt(2.0);
@@ -76,7 +57,7 @@ int main(void)
         const double *x = A.x + 3 * i, r = A.radius[i];
         const int64_t id = A.id[i];
         if (id < 0 || id >= NBOX + NCYL || seen[id]) { badid++; continue; }
-        seen[id] = 1; at[id] = i;
+        seen[id] = 1;
         if (id < NBOX) {
             for (int k = 0; k < 3; ++k) outside += x[k] - r < blo[k] || x[k] + r > bhi[k];
             low += fmod(x[2], 1e-3) < 0.5e-3;
@@ -100,39 +81,17 @@ int main(void)
               0.5, 4 * 0.5 / sqrt(NCYL));
 
     /* four keep-filtered worlds hold together exactly the particles of all */
-    int slabs[4] = {0, 1, 2, 3};
-    size_t total = 0;
-    int differ = 0, wrongSlab = 0;
-    for (int s = 0; s < 4; ++s) {
-        dem_world *w = make(&slabs[s]);
-        dem_arrays B;
-        TRY(w, dem_world_arrays(w, &B));
-        total += B.n_owned;
-        for (size_t i = 0; i < B.n_owned; ++i) {
-            const int64_t id = B.id[i];
-            if (id < 0 || id >= (int64_t)A.n_owned) { differ++; continue; }
-            const size_t k = at[id];
-            wrongSlab += !keep_slab(B.x + 3 * i, &slabs[s]);
-            differ += memcmp(B.x + 3 * i, A.x + 3 * k, 3 * sizeof(double)) != 0
-                      || B.radius[i] != A.radius[k] || B.density[i] != A.density[k];
-        }
-        dem_stats st;
-        TRY(w, dem_world_stats(w, &st));
-        check_abs("blocks keep filter: inserted count of a filtered world", (double)st.inserted, NBOX + NCYL, 0);
-        dem_world_destroy(&w);
-    }
-    check_abs("blocks keep filter: particles of the four filtered worlds", (double)total, NBOX + NCYL, 0);
-    check_abs("blocks keep filter: particles differing from the unfiltered ones (bit for bit)", (double)differ, 0, 0);
-    check_abs("blocks keep filter: particles in another world's slab", (double)wrongSlab, 0, 0);
-    free(at); free(seen);
+    test_keep_slabs("blocks", make, cut, 3, &A);
+    free(seen);
 
     {
         /* a keep box away from the region: none kept, n counted */
-        int mid, far = 9;
-        dem_world *w = world(&mid);
+        int mid;
+        test_slab far = {cut, 3, 9};
+        dem_world *w = test_fill_world(&mid);
         dem_particle_template t = test_fill_template(mid);
         const double lo[3] = {5, 5, 5}, hi[3] = {6, 6, 6};
-        TRY(w, dem_world_set_keep_filter(w, keep_slab, &far));
+        TRY(w, dem_world_set_keep_filter(w, test_keep_slab, &far));
         TRY(w, dem_world_set_keep_box(w, lo, hi));
         size_t got;
         TRY(w, dem_world_fill_blocks_box(w, blo, bhi, NBOX, &t, &got));
@@ -145,7 +104,7 @@ int main(void)
     {
         /* solid fraction 0.2 of a 20 mm cube, 2 mm spheres (the blocks jam near 0.24, fill_box near 0.27: docs/demProperties.md) */
         int mid;
-        dem_world *w = world(&mid);
+        dem_world *w = test_fill_world(&mid);
         dem_particle_template t = test_fill_template(mid);
         t.diameter.kind = DEM_DIST_FIXED; t.diameter.a = 2e-3;
         const size_t n = (size_t)(0.2 * 8e-6 / (M_PI / 6 * 8e-9));
@@ -163,19 +122,12 @@ int main(void)
        one placed without them */
     {
         int mid;
-        dem_world *p = make(NULL), *q = world(&mid);
+        dem_world *p = make(NULL), *q = test_fill_world(&mid);
         dem_particle_template t = test_fill_template(mid);
         const double lo[3] = {-0.1, -0.1, -0.1}, hi[3] = {-0.05, -0.05, -0.05};
         size_t got;
-        TRY(p, dem_world_fill_box(p, lo, hi, NULL, NULL, 50, &t, &got));
-        TRY(q, dem_world_fill_box(q, lo, hi, NULL, NULL, 50, &t, &got));
-        dem_arrays P, Q;
-        TRY(p, dem_world_arrays(p, &P));
-        TRY(q, dem_world_arrays(q, &Q));
-        int same = Q.n_owned == 50 && P.n_owned == NBOX + NCYL + 50
-                   && !memcmp(P.x + 3 * (NBOX + NCYL), Q.x, 3 * 50 * sizeof(double));
-        check_abs("blocks: a random fill after them equals the one without them (world stream untouched)",
-                  (double)same, 1, 0);
+        test_stream_untouched("blocks: a random fill after them equals the one without them (world stream untouched)",
+                              p, q, mid, NBOX + NCYL, lo, hi);
         /* refused: over particles placed before; a block that cannot hold its share */
         check_status("blocks box over existing particles", dem_world_fill_blocks_box(p, lo, hi, 10, &t, &got),
                      DEM_ERR_RANGE);

@@ -17,21 +17,14 @@
 
 static const double cut[2] = {0.012, 0.021};
 
-static int keep_slab(const double x[3], void *user)
-{
-    const int slab = *(const int *)user;
-    const int at = x[0] < cut[0] ? 0 : x[0] < cut[1] ? 1 : 2;
-    return at == slab;
-}
-
 /* the set-up of every world: list, box fill, cylinder fill, list */
-static dem_world *make(int *slab)
+static dem_world *make(test_slab *slab)
 {
     dem_world *w = test_world(DEM_CONTACT_HERTZ_MINDLIN, 1e-6, NULL, 0.05);
     dem_material m = test_material(1e7, 0.3, 0.3, 0, 0.5);
     int mid;
     TRY(w, dem_world_add_material(w, &m, &mid));
-    if (slab) TRY(w, dem_world_set_keep_filter(w, keep_slab, slab));
+    if (slab) TRY(w, dem_world_set_keep_filter(w, test_keep_slab, slab));
     dem_particle list[3] = {
         test_particle(0.005, 0.005, 0.005, 0, 0, 0, 1e-3, 2500, mid),
         test_particle(0.015, 0.005, 0.005, 0, 0, 0, 1e-3, 2500, mid),
@@ -57,7 +50,7 @@ static dem_world *make(int *slab)
 int main(void)
 {
     dem_world *all = make(NULL);
-    int slabs[3] = {0, 1, 2};
+    test_slab slabs[3] = {{cut, 2, 0}, {cut, 2, 1}, {cut, 2, 2}};
     dem_world *part[3];
     for (int k = 0; k < 3; ++k) part[k] = make(&slabs[k]);
 
@@ -77,7 +70,7 @@ int main(void)
         nSum += B.n_owned;
         for (size_t j = 0; j < B.n_owned; ++j) {
             if (B.id[j] == A.id[A.n_owned - 1]) { ++last; continue; }   /* added after the filter */
-            if (!keep_slab(B.x + 3 * j, &slabs[k])) ++wrongSlab;
+            if (!test_keep_slab(B.x + 3 * j, &slabs[k])) ++wrongSlab;
             for (size_t i = 0; i < A.n_owned; ++i) {
                 if (A.id[i] != B.id[j]) continue;
                 ++found;

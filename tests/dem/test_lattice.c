@@ -17,30 +17,17 @@
 
 static const double cut[2] = {0.031, 0.064};
 
-static int keep_slab(const double x[3], void *user)
-{
-    const int slab = *(const int *)user;
-    const int at = x[0] < cut[0] ? 0 : x[0] < cut[1] ? 1 : 2;
-    return at == slab;
-}
-
 static const double blo[3] = {0, 0, 0}, bhi[3] = {0.1, 0.05, 0.08};
 static const double cbase[3] = {0.05, 0.02, 0.01}, caxis[3] = {0, 1, 1};
 static const double cR = 0.015, cL = 0.05;
 enum { NBOX = 3000, NCYL = 1500 };
 
 /* a world with a box and a cylinder lattice fill (slab: keep filter) */
-static dem_world *make(int *slab)
+static dem_world *make(test_slab *slab)
 {
-    dem_world *w = test_world(DEM_CONTACT_HERTZ_MINDLIN, 1e-6, NULL, 0.2);
-    dem_material m = test_material(1e7, 0.3, 0.3, 0, 0.5);
     int mid;
-    TRY(w, dem_world_add_material(w, &m, &mid));
-    if (slab) {
-        TRY(w, dem_world_set_keep_filter(w, keep_slab, slab));
-        double lo[3] = {*slab == 0 ? -1 : cut[*slab - 1], -1, -1}, hi[3] = {*slab == 2 ? 1 : cut[*slab], 1, 1};
-        TRY(w, dem_world_set_keep_box(w, lo, hi));
-    }
+    dem_world *w = test_fill_world(&mid);
+    if (slab) test_set_keep_slab(w, slab);
     dem_particle_template t = test_fill_template(mid);
     size_t got = 0;
     TRY(w, dem_world_fill_lattice_box(w, blo, bhi, NBOX, &t, &got));
@@ -82,49 +69,18 @@ int main(void)
                 (zmax - zmin) / (bhi[2] - blo[2]), 0.8, 1.0);
 
     /* three keep-filtered worlds hold together exactly the particles of all */
-    int slabs[3] = {0, 1, 2};
-    size_t total = 0;
-    int differ = 0, wrongSlab = 0;
-    for (int s = 0; s < 3; ++s) {
-        dem_world *w = make(&slabs[s]);
-        dem_arrays B;
-        TRY(w, dem_world_arrays(w, &B));
-        total += B.n_owned;
-        for (size_t i = 0; i < B.n_owned; ++i) {
-            const int64_t id = B.id[i];
-            if (id < 0 || id >= (int64_t)A.n_owned) { differ++; continue; }
-            wrongSlab += !keep_slab(B.x + 3 * i, &slabs[s]);
-            differ += memcmp(B.x + 3 * i, A.x + 3 * id, 3 * sizeof(double)) != 0
-                      || B.radius[i] != A.radius[id] || B.density[i] != A.density[id];
-        }
-        dem_stats st;
-        TRY(w, dem_world_stats(w, &st));
-        check_abs("lattice keep filter: inserted count of a filtered world", (double)st.inserted, NBOX + NCYL, 0);
-        dem_world_destroy(&w);
-    }
-    check_abs("lattice keep filter: particles of the three filtered worlds", (double)total, NBOX + NCYL, 0);
-    check_abs("lattice keep filter: particles differing from the unfiltered ones (bit for bit)", (double)differ, 0, 0);
-    check_abs("lattice keep filter: particles in another world's slab", (double)wrongSlab, 0, 0);
+    test_keep_slabs("lattice", make, cut, 2, &A);
 
     /* the world's random stream: a random fill placed after a lattice fill
        is the one placed without it */
     {
-        dem_world *p = make(NULL), *q = test_world(DEM_CONTACT_HERTZ_MINDLIN, 1e-6, NULL, 0.2);
-        dem_material m = test_material(1e7, 0.3, 0.3, 0, 0.5);
         int mid;
-        TRY(q, dem_world_add_material(q, &m, &mid));
+        dem_world *p = make(NULL), *q = test_fill_world(&mid);
         dem_particle_template t = test_fill_template(mid);
         const double lo[3] = {-0.1, -0.1, -0.1}, hi[3] = {-0.05, -0.05, -0.05};
         size_t got;
-        TRY(p, dem_world_fill_box(p, lo, hi, NULL, NULL, 50, &t, &got));
-        TRY(q, dem_world_fill_box(q, lo, hi, NULL, NULL, 50, &t, &got));
-        dem_arrays P, Q;
-        TRY(p, dem_world_arrays(p, &P));
-        TRY(q, dem_world_arrays(q, &Q));
-        int same = Q.n_owned == 50 && P.n_owned == NBOX + NCYL + 50
-                   && !memcmp(P.x + 3 * (NBOX + NCYL), Q.x, 3 * 50 * sizeof(double));
-        check_abs("lattice: a random fill after it equals the one without it (world stream untouched)",
-                  (double)same, 1, 0);
+        test_stream_untouched("lattice: a random fill after it equals the one without it (world stream untouched)",
+                              p, q, mid, NBOX + NCYL, lo, hi);
         /* refused: a lattice fill over particles placed before; too many */
         check_status("lattice box over existing particles", dem_world_fill_lattice_box(p, lo, hi, 10, &t, &got),
                      DEM_ERR_RANGE);
