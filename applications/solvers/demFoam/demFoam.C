@@ -100,18 +100,11 @@ int main(int argc, char *argv[])
             writeLastGood(dem.failure());
         }
 
-        const auto tFluid0 = std::chrono::steady_clock::now();
-
-        epsf = fvc::interpolate(eps);
-        epsPhi = epsf*phi;
-
-        #include "runControlInjectSolve.H"
+        #include "runControlSolveStart.H"
 
         // --- Pressure-velocity PIMPLE corrector loop (runControl.H,
         // nonFiniteSolution: a NaN that stops OpenFOAM's record of the
         // solvers' residuals ends the step as a failure)
-        std::string solveFailure;
-        const bool solveThrowing = FatalIOError.throwExceptions(true);
         try
         {
             while (pimple.loop())
@@ -135,24 +128,7 @@ int main(int argc, char *argv[])
         {
             solveFailure = nonFiniteSolution(e, solveThrowing);
         }
-        FatalIOError.throwExceptions(solveThrowing);
-        if (!solveFailure.empty())
-        {
-            writeLastGood(solveFailure);
-        }
-
-        #include "runControlFluidCheck.H"
-
-        dem.updateDriving(U);
-        dem.addFluidTime
-        (
-            std::chrono::duration<scalar>
-            (
-                std::chrono::steady_clock::now() - tFluid0
-            ).count()
-        );
-
-        #include "runControlWrite.H"
+        #include "runControlSolveEnd.H"
     }
     #include "runControlEnd.H"
 
