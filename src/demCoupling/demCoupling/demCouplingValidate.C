@@ -345,7 +345,7 @@ bool Foam::demCoupling::checkDictionary
     if (dict.isDict("initialParticles"))
     {
         const dictionary& all = dict.subDict("initialParticles");
-        word latticeBefore;
+        word indexedBefore;
         for (const entry& e : all)
         {
             const word sc("initialParticles/" + e.keyword() + "/");
@@ -412,20 +412,20 @@ bool Foam::demCoupling::checkDictionary
             // lattice and randomBlocks compute each particle from its index:
             // a processor keeps only those near it
             const word arrangement(d.getOrDefault<word>("arrangement", "random"));
-            const bool lattice = arrangement != "random";
-            if (lattice && d.getOrDefault<bool>("insideMesh", false))
+            const bool indexed = arrangement != "random";
+            if (indexed && d.getOrDefault<bool>("insideMesh", false))
             {
                 chk.fail(d, sc, "insideMesh", "yes", "not with arrangement " + arrangement + " (it fills the box or cylinder itself; use arrangement random to take the mesh's shape)");
             }
-            if (!lattice && type != "list" && Pstream::parRun() && latticeBefore != "")
+            if (!indexed && type != "list" && Pstream::parRun() && indexedBefore != "")
             {
                 // every processor draws a random fill against all particles
                 // before it, and a lattice fill keeps only those near it
-                chk.fail(d, sc, "arrangement", arrangement, "a random fill after the " + latticeBefore + " in a decomposed run; put the lattice and randomBlocks entries after the random ones, or give this one arrangement lattice or randomBlocks");
+                chk.fail(d, sc, "arrangement", arrangement, "a random fill after the " + indexedBefore + " in a decomposed run; put the lattice and randomBlocks entries after the random ones, or give this one arrangement lattice or randomBlocks");
             }
-            if (lattice && latticeBefore == "")
+            if (indexed && indexedBefore == "")
             {
-                latticeBefore = arrangement + " fill " + e.keyword();
+                indexedBefore = arrangement + " fill " + e.keyword();
             }
             if
             (

@@ -275,25 +275,26 @@ void Foam::particleInsertion::addInitialParticles()
             (
                 d.getOrDefault<word>("arrangement", "random")
             );
-            const bool lattice = arrangement == "lattice";
+            // lattice and randomBlocks: each particle computed from its
+            // index, so a processor keeps only those near it
+            const bool indexed = arrangement != "random";
             const bool blocks = arrangement == "randomBlocks";
             dem_status s = DEM_OK;
-            // lattice and randomBlocks: each particle computed from its
-            // index (the same arguments for both)
+            // the same arguments for both
             const auto boxFill =
                 blocks ? &dem_world_fill_blocks_box : &dem_world_fill_lattice_box;
             const auto cylinderFill =
                 blocks
               ? &dem_world_fill_blocks_cylinder
               : &dem_world_fill_lattice_cylinder;
-            if ((lattice || blocks) && type == "box")
+            if (indexed && type == "box")
             {
                 s = boxFill
                 (
                     world_, lo.cdata(), hi.cdata(), size_t(n), &t, &inserted
                 );
             }
-            else if (lattice || blocks)
+            else if (indexed)
             {
                 const point base(d.get<point>("base"));
                 const vector axis(d.get<vector>("axis"));
@@ -328,25 +329,27 @@ void Foam::particleInsertion::addInitialParticles()
                 FatalIOErrorInFunction(d)
                     << "initialParticles/" << e.keyword() << " in "
                     << d.name() << ": "
-                    << (lattice || blocks ? "not all " : "only " + Foam::name(label(inserted)) + " of ")
+                    << (indexed ? std::string("not all ") : "only " + Foam::name(label(inserted)) + " of ").c_str()
                     << n << " particles fit into the "
                     << region.describe().c_str()
-                    << (lattice ? " (arrangement lattice: one cubic cell of the largest diameter each; "
-                        + std::string(world_.lastError()) + ")"
-                      : blocks ? " (arrangement randomBlocks: " + std::string(world_.lastError()) + ")"
-                      : std::string())
+                    << (
+                           !indexed ? std::string()
+                         : std::string(" (arrangement ") + arrangement
+                         + (blocks ? ": " : ": one cubic cell of the largest diameter each; ")
+                         + world_.lastError() + ")"
+                       ).c_str()
                     << "; enlarge the region or lower number"
                     << exit(FatalIOError);
             }
             world_.check
             (
                 s,
-                lattice ? "dem_world_fill_lattice"
-              : blocks ? "dem_world_fill_blocks" : "dem_world_fill_box"
+                !indexed ? "dem_world_fill_box"
+              : blocks ? "dem_world_fill_blocks" : "dem_world_fill_lattice"
             );
             Info<< "demCoupling: " << e.keyword() << ": " << label(inserted)
                 << " particles in " << region.describe().c_str()
-                << (lattice ? " (lattice)" : blocks ? " (randomBlocks)" : "")
+                << (indexed ? std::string(" (") + arrangement + ")" : std::string()).c_str()
                 << endl;
         }
         else
