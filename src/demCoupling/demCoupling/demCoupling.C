@@ -128,6 +128,7 @@ Foam::demCoupling::demCoupling
     voidage_(voidageModel::New(dict_, mesh, locator_)),
     extraForces_(extraForce::NewList(dict_)),
     cellMeanDrag_(false),
+    localDragReaction_(false),
     frozen_(dict_.getOrDefault<bool>("frozen", false)),
     epsMin_(dict_.getOrDefault<scalar>("epsMin", 0.1)),
     epsRelaxTime_(dict_.getOrDefault<scalar>("voidageRelaxationTime", 0)),
@@ -171,6 +172,8 @@ Foam::demCoupling::demCoupling
        dimensionedVector(dimForce/dimVolume, Zero)),
     Ucoup_(fieldIO(mesh, "Ucoupling", false), mesh,
            dimensionedVector(dimVelocity, Zero)),
+    KUcoup_(fieldIO(mesh, "KUcoupling", false), mesh,
+           dimensionedVector(dimForce/dimVolume, Zero)),
     source_(fieldIO(mesh, "demMomentumSource", true), mesh,
             dimensionedVector(dimForce/dimVolume, Zero)),
     eta_(fieldIO(mesh, "eta", true), mesh, dimensionedScalar(dimless, Zero)),
@@ -195,6 +198,19 @@ Foam::demCoupling::demCoupling
     if (Pstream::parRun())
     {
         (void)mesh_.tetBasePtIs();
+    }
+
+    const word reaction(dict_.getOrDefault<word>("dragReaction", "exact"));
+    if (reaction == "local")
+    {
+        localDragReaction_ = true;
+    }
+    else if (reaction != "exact")
+    {
+        FatalIOErrorInFunction(dict_)
+            << "dragReaction " << reaction << " in " << dict_.name()
+            << ": allowed exact (default) or local"
+            << exit(FatalIOError);
     }
 
     const word scheme(dict_.getOrDefault<word>("dragScheme", "perParticle"));
@@ -312,6 +328,8 @@ Foam::demCoupling::demCoupling
         << ", drag " << dict_.get<word>("dragModel")
         << (cellMeanDrag_ ? " (cell-mean)" : " (per particle)")
         << ", solid volume " << diag_.solid().particles << " m3" << nl << endl;
+    Info<< "demCoupling: drag reaction "
+        << (localDragReaction_ ? "local" : "exact") << nl << endl;
 
     // the progress estimate counts the coupled steps only (not the
     // settling and set-up before them)
@@ -388,12 +406,25 @@ Foam::tmp<Foam::volScalarField> Foam::demCoupling::Kc() const
 }
 
 
+Foam::tmp<Foam::vectorField> Foam::demCoupling::dragMoment() const
+{
+    // exact: K_c U_coupling, so that the fluid gets the particles' drag
+    // forces plus K_c (U - U_coupling); local: sum of w K u_f, so that it
+    // gets sum of w K (U_c - v) (docs/theory.md section 2.2)
+    if (localDragReaction_)
+    {
+        return tmp<vectorField>::New(KUcoup_.primitiveField());
+    }
+    return Kc_.primitiveField()*Ucoup_.primitiveField();
+}
+
+
 Foam::tmp<Foam::volVectorField> Foam::demCoupling::Sc() const
 {
     return sourceField<vector>
     (
         mesh_, "Sc", dimForce/dimVolume,
-        Kc_.primitiveField()*Ucoup_.primitiveField() - F_.primitiveField()
+        dragMoment() - F_.primitiveField()
     );
 }
 
@@ -413,7 +444,7 @@ Foam::tmp<Foam::volVectorField> Foam::demCoupling::Skin() const
     return sourceField<vector>
     (
         mesh_, "Skin", dimVelocity/dimTime,
-        (Kc_.primitiveField()*Ucoup_.primitiveField() - F_.primitiveField())
+        (dragMoment() - F_.primitiveField())
        /rhof_
     );
 }

@@ -400,11 +400,13 @@ void Foam::demCoupling::exchange
     const label nEnd = label(a.n_owned);
 
     vectorField Fc(mesh_.nCells(), Zero);
+    vectorField KUcell(localDragReaction_ ? mesh_.nCells() : 0, Zero);
     scalarField Kcell(mesh_.nCells(), 0);
     scalarField etaCell(mesh_.nCells(), 0);
     scalarField wCell(mesh_.nCells(), 0);
     const label nHalo = map_.nHalo();
     vectorField FcHalo(nHalo, Zero);
+    vectorField KUcellHalo(localDragReaction_ ? nHalo : 0, Zero);
     scalarField KcellHalo(nHalo, 0), etaCellHalo(nHalo, 0), wCellHalo(nHalo, 0);
 
     state_.outIds.setSize(nEnd);
@@ -474,11 +476,20 @@ void Foam::demCoupling::exchange
 
         map_.deposit(s, exch, Fc, FcHalo);
         map_.deposit(s, sd.Ksum[s], Kcell, KcellHalo);
+        if (localDragReaction_)
+        {
+            map_.deposit(s, sd.Ksum[s]*sd.uF[s], KUcell, KUcellHalo);
+        }
         map_.deposit(s, state_.etaP[j], etaCell, etaCellHalo);
         map_.deposit(s, scalar(1), wCell, wCellHalo);
     }
     map_.haloAdd(Fc, FcHalo);
     map_.haloAdd(Kcell, KcellHalo);
+    if (localDragReaction_)
+    {
+        map_.haloAdd(KUcell, KUcellHalo);
+        KUcoup_.primitiveFieldRef() = KUcell/V;
+    }
     map_.haloAdd(etaCell, etaCellHalo);
     map_.haloAdd(wCell, wCellHalo);
     if (nSeen != n)

@@ -39,10 +39,11 @@ void Foam::demCoupling::checkpoint()
         "dem_world_save_memory"
     );
     saved_ = state_;
-    snapVec_.setSize(3);
+    snapVec_.setSize(4);
     snapVec_[0] = F_.primitiveField();
     snapVec_[1] = source_.primitiveField();
     snapVec_[2] = Ucoup_.primitiveField();
+    snapVec_[3] = KUcoup_.primitiveField();
     snapScalar_.setSize(2);
     snapScalar_[0] = Kc_.primitiveField();
     snapScalar_[1] = eta_.primitiveField();
@@ -68,6 +69,7 @@ void Foam::demCoupling::restoreCheckpoint()
     F_.primitiveFieldRef() = snapVec_[0];
     source_.primitiveFieldRef() = snapVec_[1];
     Ucoup_.primitiveFieldRef() = snapVec_[2];
+    KUcoup_.primitiveFieldRef() = snapVec_[3];
     Kc_.primitiveFieldRef() = snapScalar_[0];
     eta_.primitiveFieldRef() = snapScalar_[1];
 

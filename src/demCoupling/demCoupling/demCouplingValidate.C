@@ -165,6 +165,7 @@ bool Foam::demCoupling::checkDictionary
         choice("formulation", formulations),
         choice("dragModel", drags),
         choice("dragScheme", wordList({"perParticle", "cellMean"})),
+        choice("dragReaction", wordList({"exact", "local"})),
         choice("voidageModel", voidages),
         num("epsMin", kind::Scalar, 0, 1, true, true),
         num("voidageRelaxationTime", kind::Scalar, 0, inf, false, false),
