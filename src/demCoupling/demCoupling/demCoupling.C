@@ -200,31 +200,21 @@ Foam::demCoupling::demCoupling
         (void)mesh_.tetBasePtIs();
     }
 
-    const word reaction(dict_.getOrDefault<word>("dragReaction", "exact"));
-    if (reaction == "local")
+    // a keyword of two values: true for the second; anything else stops
+    const auto secondOf = [this](const word& key, const word& first, const word& second)
     {
-        localDragReaction_ = true;
-    }
-    else if (reaction != "exact")
-    {
-        FatalIOErrorInFunction(dict_)
-            << "dragReaction " << reaction << " in " << dict_.name()
-            << ": allowed exact (default) or local"
-            << exit(FatalIOError);
-    }
-
-    const word scheme(dict_.getOrDefault<word>("dragScheme", "perParticle"));
-    if (scheme == "cellMean")
-    {
-        cellMeanDrag_ = true;
-    }
-    else if (scheme != "perParticle")
-    {
-        FatalIOErrorInFunction(dict_)
-            << "dragScheme " << scheme << " in " << dict_.name()
-            << ": allowed perParticle (default) or cellMean"
-            << exit(FatalIOError);
-    }
+        const word w(dict_.getOrDefault<word>(key, first));
+        if (w != first && w != second)
+        {
+            FatalIOErrorInFunction(dict_)
+                << key << " " << w << " in " << dict_.name()
+                << ": allowed " << first << " (default) or " << second
+                << exit(FatalIOError);
+        }
+        return w == second;
+    };
+    localDragReaction_ = secondOf("dragReaction", "exact", "local");
+    cellMeanDrag_ = secondOf("dragScheme", "perParticle", "cellMean");
     if (epsMin_ <= 0 || epsMin_ >= 1)
     {
         FatalIOErrorInFunction(dict_)
