@@ -132,6 +132,7 @@ Foam::demCoupling::demCoupling
     frozen_(dict_.getOrDefault<bool>("frozen", false)),
     epsMin_(dict_.getOrDefault<scalar>("epsMin", 0.1)),
     epsRelaxTime_(dict_.getOrDefault<scalar>("voidageRelaxationTime", 0)),
+    smoothing_(mesh, dict_),
     demDt_(0),
     dragUpdateInterval_(0),
     nSubCycles_(0),

@@ -169,6 +169,7 @@ bool Foam::demCoupling::checkDictionary
         choice("voidageModel", voidages),
         num("epsMin", kind::Scalar, 0, 1, true, true),
         num("voidageRelaxationTime", kind::Scalar, 0, inf, false, false),
+        num("voidageSmoothingLength", kind::Scalar, 0, inf, false, false),
         num("etaWarning", kind::Scalar, 0, inf, false, false),
         num("insertionRampTime", kind::Scalar, 0, inf, false, false),
         any("frozen", kind::Bool),

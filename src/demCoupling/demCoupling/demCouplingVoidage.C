@@ -7,7 +7,8 @@ Description
     The particles' volume on the mesh (step 5 of evolve(), demCoupling.H):
     their (cell, weight) lists, the voidage eps and the cell-mean particle
     velocity Up, a new particle's volume weighted by its insertion ramp
-    (particleInsertion); the continuity's voidage relaxed in time
+    (particleInsertion); the solid fraction smoothed in space
+    (voidageSmoothingLength); the continuity's voidage relaxed in time
     (voidageRelaxationTime).
 
 \*---------------------------------------------------------------------------*/
@@ -66,8 +67,13 @@ void Foam::demCoupling::computeVoidage()
     reduce(solidParticles, sumOp<scalar>());
     reduce(solidRamp, sumOp<scalar>());
 
+    // epsRaw: the weights' own solid fraction, for the exchange terms that
+    // must balance (demCouplingEvolve.C); eps: what the fluid and the drag
+    // laws see, smoothed over voidageSmoothingLength if it is set
     epsRaw_.primitiveFieldRef() = 1.0 - solid/V;
-    eps_.primitiveFieldRef() = max(epsRaw_.primitiveField(), epsMin_);
+    scalarField solidFraction(solid/V);
+    smoothing_.smooth(solidFraction);
+    eps_.primitiveFieldRef() = max(1.0 - solidFraction, epsMin_);
     eps_.correctBoundaryConditions();
 
     forAll(mom, c)
