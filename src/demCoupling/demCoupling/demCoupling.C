@@ -404,7 +404,7 @@ Foam::tmp<Foam::vectorField> Foam::demCoupling::dragMoment() const
     // gets sum of w K (U_c - v) (docs/theory.md section 2.2)
     if (localDragReaction_)
     {
-        return tmp<vectorField>::New(KUcoup_.primitiveField());
+        return tmp<vectorField>(KUcoup_.primitiveField());  // a reference, no copy
     }
     return Kc_.primitiveField()*Ucoup_.primitiveField();
 }
