@@ -70,8 +70,8 @@ void Foam::demCoupling::computeVoidage()
     // epsRaw: the weights' own solid fraction, for the exchange terms that
     // must balance (demCouplingEvolve.C); eps: what the fluid and the drag
     // laws see, smoothed over voidageSmoothingLength if it is set
-    epsRaw_.primitiveFieldRef() = 1.0 - solid/V;
     scalarField solidFraction(solid/V);
+    epsRaw_.primitiveFieldRef() = 1.0 - solidFraction;
     smoothing_.smooth(solidFraction);
     eps_.primitiveFieldRef() = max(1.0 - solidFraction, epsMin_);
     eps_.correctBoundaryConditions();

@@ -7,8 +7,6 @@
 
 #include "voidageSmoothing.H"
 #include "fvm.H"
-#include "laplacianScheme.H"
-#include "surfaceFields.H"
 #include "IStringStream.H"
 
 // * * * * * * * * * * * * * * * * Constructor * * * * * * * * * * * * * * //
@@ -22,6 +20,8 @@ Foam::voidageSmoothing::voidageSmoothing
     mesh_(mesh),
     length_(dict.getOrDefault<scalar>("voidageSmoothingLength", 0)),
     field_(),
+    L2_(),
+    laplacian_(),
     solverControls_(IStringStream
     (
         "solver PCG; preconditioner DIC; tolerance 1e-13; relTol 0; "
@@ -48,6 +48,25 @@ Foam::voidageSmoothing::voidageSmoothing
             "zeroGradient"
         )
     );
+    L2_.reset
+    (
+        new surfaceScalarField
+        (
+            IOobject
+            (
+                "voidageSmoothingL2", mesh.time().timeName(), mesh,
+                IOobject::NO_READ, IOobject::NO_WRITE, false
+            ),
+            mesh,
+            dimensionedScalar("L2", dimArea, sqr(length_))
+        )
+    );
+    // uncorrected keeps the matrix an M-matrix (bounded, positive) on
+    // non-orthogonal meshes
+    laplacian_ = fv::laplacianScheme<scalar, scalar>::New
+    (
+        mesh, IStringStream("Gauss linear uncorrected")()
+    );
     Info<< "demCoupling: voidage smoothed over " << length_ << " m"
         << " (voidageSmoothingLength)" << endl;
 }
@@ -66,28 +85,8 @@ void Foam::voidageSmoothing::smooth(scalarField& s)
     f.primitiveFieldRef() = s;
     f.correctBoundaryConditions();
 
-    // the scheme is fixed here, not read from fvSchemes: uncorrected keeps
-    // the matrix an M-matrix (bounded, positive) on non-orthogonal meshes
-    tmp<fv::laplacianScheme<scalar, scalar>> lap
-    (
-        fv::laplacianScheme<scalar, scalar>::New
-        (
-            mesh_, IStringStream("Gauss linear uncorrected")()
-        )
-    );
-    const surfaceScalarField L2
-    (
-        IOobject
-        (
-            "voidageSmoothingL2", mesh_.time().timeName(), mesh_,
-            IOobject::NO_READ, IOobject::NO_WRITE, false
-        ),
-        mesh_,
-        dimensionedScalar("L2", dimArea, sqr(length_))
-    );
-
     fvScalarMatrix eqn(fvm::Sp(dimensionedScalar("one", dimless, 1), f));
-    eqn -= lap.ref().fvmLaplacian(L2, f);
+    eqn -= laplacian_.ref().fvmLaplacian(L2_(), f);
     eqn.source() += s*V;
     eqn.solve(solverControls_);
 
