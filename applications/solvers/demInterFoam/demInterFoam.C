@@ -92,6 +92,7 @@ int main(int argc, char *argv[])
     {
         #include "readTimeControls.H"
         #include "CourantNo.H"
+        #include "phaseCourantNo.H"     // maxCoPhase: CoNum over one phase
         #include "interfaceCourantNo.H"
         #include "demDeltaT.H"      // setDeltaT.H in whole DEM steps
 
