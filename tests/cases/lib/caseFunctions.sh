@@ -7,7 +7,10 @@
 #   setKey FILE KEY VALUE   replace "KEY ...;" (first occurrence, any
 #                     indentation) in FILE; a missing KEY is a FAIL
 #                     (run scripts set top-level entries with demSetEntry)
+#   python3: foamField.internal_field(PATH) reads a field's cell values
 top="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd -P)"
+# python3 in the tests: "from foamField import internal_field" (lib/foamField.py)
+export PYTHONPATH="$top/tests/cases/lib${PYTHONPATH:+:$PYTHONPATH}"
 nFail=0
 
 setupEnv() {
