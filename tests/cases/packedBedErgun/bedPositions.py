@@ -10,18 +10,11 @@ usage: bedPositions.py TIME_DIR H SOLID_FRACTION D SEED > positions
 (TIME_DIR holds C and V of postProcess -func 'writeCellCentres' and
 -func 'writeCellVolumes')."""
 import math, random, sys
-
-def field(path, n=1):
-    s = open(path).read()
-    i = s.index("internalField")
-    j = s.index("(", s.index("\n", i))
-    vals = s[j + 1:s.index("\n)", j)].replace("(", " ").replace(")", " ").split()
-    v = [float(x) for x in vals]
-    return [v[k:k + n] for k in range(0, len(v), n)] if n > 1 else v
+from foamField import internal_field
 
 tdir, H, phi, d, seed = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), \
     float(sys.argv[4]), int(sys.argv[5])
-C, V = field(tdir + "/C", 3), field(tdir + "/V")
+C, V = internal_field(tdir + "/C"), internal_field(tdir + "/V")
 rng = random.Random(seed)
 Vp = math.pi * d**3 / 6
 carry, pts = 0.0, []

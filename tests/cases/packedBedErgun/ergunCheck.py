@@ -11,20 +11,12 @@ Prints: dp ergun uFirst uTop
   uFirst, uTop  superficial velocity eps U_z / U of the first and the top
          bed layer (volume averages), from TIME/{eps,U} and 0/V."""
 import glob, sys
+from foamField import internal_field
 rho, mu, d, g = 1.2, 1.8e-5, 1e-3, 9.81
 
 def series(name):
     f = sorted(glob.glob("postProcessing/%s/*/surfaceFieldValue.dat" % name))[-1]
     return [[float(x) for x in l.split()] for l in open(f) if l[0] != "#"]
-
-def field(path, n=1):
-    s = open(path).read()
-    i = s.index("internalField")
-    if "nonuniform" not in s[i:s.index("\n", i)]:
-        return None
-    j = s.index("(", s.index("\n", i))
-    v = [float(x) for x in s[j + 1:s.index("\n)", j)].replace("(", " ").replace(")", " ").split()]
-    return [v[k:k + n] for k in range(0, len(v), n)] if n > 1 else v
 
 t, U, H, Lz = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])
 t0 = float(sys.argv[5]) if len(sys.argv) > 5 else None
@@ -32,9 +24,9 @@ pin, pout = series("pInlet"), series("pOutlet")
 sel = [k for k in range(len(pin)) if (pin[k][0] >= t0 if t0 is not None else k == len(pin) - 1)]
 dp = sum(rho * (pin[k][1] - pout[k][1]) for k in sel) / len(sel) - rho * g * Lz
 
-C, V = field("0/C", 3), field("0/V")
-eps = field(t + "/eps") or [1.0] * len(V)
-Uc = field(t + "/U", 3)
+C, V = internal_field("0/C"), internal_field("0/V")
+eps = internal_field(t + "/eps", len(V))      # uniform (no particle): n given
+Uc = internal_field(t + "/U")
 bed = [c for c in range(len(V)) if C[c][2] < H]
 e = sum(eps[c] * V[c] for c in bed) / sum(V[c] for c in bed)
 ergun = (150 * mu * (1 - e)**2 * U / (e**3 * d * d) + 1.75 * rho * (1 - e) * U * U / (e**3 * d)) * H

@@ -13,6 +13,7 @@ Prints: dp W dpRaw
   W      sum m_i g (1 - rho_f/rho_p,i)/A at T2 [Pa]
 A = the mesh volume (0/V, postProcess -func writeCellVolumes) / LZ."""
 import glob, math, sys
+from foamField import internal_field
 rho, g = 1.2, 9.81
 
 def series(name):
@@ -20,10 +21,9 @@ def series(name):
     return [[float(x) for x in l.split()] for l in open(f) if l[0] != "#"]
 
 def values(path, n=1):
-    """internalField of a mesh field or the list of a cloud field
-    (N(...) or the uniform form N{v})"""
+    """The list of a cloud field (N(...) or the uniform form N{v})"""
     s = open(path).read()
-    i = s.index("internalField") if "internalField" in s else s.index("}")
+    i = s.index("}")
     body = s[s.index("\n", i):]
     k = body.find("{")
     if k >= 0 and (body.find("(") < 0 or k < body.find("(")):
@@ -43,7 +43,7 @@ def momentum(t):
     return sum(mi * u[2] for mi, u in zip(m, U)), m, rp
 
 t1, t2, Lz = float(sys.argv[1]), float(sys.argv[2]), float(sys.argv[3])
-A = sum(values("0/V")) / Lz
+A = sum(internal_field("0/V")) / Lz
 pin, pout = series("pInlet"), series("pOutlet")
 sel = [k for k in range(len(pin)) if t1 - 1e-9 <= pin[k][0] <= t2 + 1e-9]
 dpRaw = sum(rho * (pin[k][1] - pout[k][1]) for k in sel) / len(sel) - rho * g * Lz
