@@ -30,6 +30,7 @@ Description
 #include "turbulentTransportModel.H"
 #include "pimpleControl.H"
 #include "fvOptions.H"
+#include "profiling.H"
 #include "demCoupling.H"
 #include "interpolateInner.H"
 #include "fluxReconstruction.H"
@@ -93,6 +94,9 @@ int main(int argc, char *argv[])
                 "divTau",
                 -(turbulence->divDevReff(U) & U)
             );
+            // timed sections of a step for OpenFOAM's profiling (controlDict
+            // profiling { active true; }: docs/performance.md, "Where a step's time goes")
+            addProfiling(demEvolve, "dem.evolve");
             dem.evolve(U, p, divTau, laminarTransport.nu()());
         }
         if (!dem.failure().empty())
@@ -109,16 +113,20 @@ int main(int argc, char *argv[])
         {
             while (pimple.loop())
             {
+                addProfiling(UEqn, "UEqn");
                 #include "UEqn.H"
+                endProfiling(UEqn);
 
                 // --- Pressure corrector loop
                 while (pimple.correct())
                 {
+                    addProfiling(pEqn, "pEqn");
                     #include "pEqn.H"
                 }
 
                 if (pimple.turbCorr())
                 {
+                    addProfiling(turbulence, "turbulence");
                     laminarTransport.correct();
                     turbulence->correct();
                 }

@@ -40,6 +40,7 @@ Description
 #include "turbulentTransportModel.H"
 #include "pimpleControl.H"
 #include "fvOptions.H"
+#include "profiling.H"
 #include "MULES.H"
 #include "demCoupling.H"
 #include "interpolateInner.H"
@@ -108,6 +109,9 @@ int main(int argc, char *argv[])
                 "divTau",
                 -(turbulence->divDevRhoReff(rho, U) & U)
             );
+            // timed sections of a step for OpenFOAM's profiling (controlDict
+            // profiling { active true; }: docs/performance.md, "Where a step's time goes")
+            addProfiling(demEvolve, "dem.evolve");
             dem.evolve(U, p, divTau, mixture.mu()(), rho);
         }
         if (!dem.failure().empty())
@@ -124,18 +128,24 @@ int main(int argc, char *argv[])
         {
             while (pimple.loop())
             {
+                addProfiling(alphaEqn, "alphaEqn");
                 #include "alphaEqn.H"
+                endProfiling(alphaEqn);
 
+                addProfiling(UEqn, "UEqn");
                 #include "UEqn.H"
+                endProfiling(UEqn);
 
                 // --- Pressure corrector loop
                 while (pimple.correct())
                 {
+                    addProfiling(pEqn, "pEqn");
                     #include "pEqn.H"
                 }
 
                 if (pimple.turbCorr())
                 {
+                    addProfiling(turbulence, "turbulence");
                     turbulence->correct();
                 }
             }

@@ -37,6 +37,22 @@ print('PASS' if err<=t else 'FAIL')")
     [ "$r" = PASS ] || nFail=$((nFail+1))
 }
 
+# profilingOn: switch OpenFOAM's profiling on in system/controlDict (the
+# solvers' timed sections of a step, docs/performance.md)
+profilingOn() {
+    printf 'profiling\n{\n    active true;\n    cpuInfo false;\n    memInfo false;\n    sysInfo false;\n}\n' >> system/controlDict
+}
+
+# checkProfiling NAME FILE SECTION:CALLS ...: each SECTION (its description
+# in OpenFOAM's uniform/profiling FILE) was entered CALLS times
+checkProfiling() {
+    local name=$1 file=$2 sec n; shift 2
+    for sec in "$@"; do
+        n=$(awk -v d="\"${sec%:*}\";" '$1 == "description" && $2 == d { f = 1 } f && $1 == "calls" { print $2 + 0; exit }' "$file" 2>/dev/null)
+        check "$name/profiling: calls of ${sec%:*} in $file" "${n:-nan}" "${sec##*:}" 0
+    done
+}
+
 # checkRange NAME MEASURED LO HI  (LO <= MEASURED <= HI; -inf/inf for one side)
 checkRange() {
     local r
