@@ -134,6 +134,7 @@ Foam::demCoupling::demCoupling
     epsRelaxTime_(dict_.getOrDefault<scalar>("voidageRelaxationTime", 0)),
     smoothing_(mesh, dict_),
     demDt_(0),
+    fitToFluidStep_(false),
     dragUpdateInterval_(0),
     nSubCycles_(0),
     insertion_(mesh, world_, locator_, dict_, materialIds_, state_),
@@ -233,6 +234,7 @@ Foam::demCoupling::demCoupling
 
     const dictionary& demDict = dict_.subDict("dem");
     demDt_ = demDict.get<scalar>("timeStep");
+    fitToFluidStep_ = demDict.getOrDefault<bool>("fitToFluidStep", false);
     dragUpdateInterval_ = demDict.getOrDefault<label>("dragUpdateInterval", 0);
 
     subSteps(mesh.time().deltaTValue());
@@ -332,6 +334,12 @@ Foam::demCoupling::demCoupling
 
 Foam::label Foam::demCoupling::subSteps(const scalar dt) const
 {
+    if (fitToFluidStep_)
+    {
+        // the fewest equal steps not longer than demDt_ (a step within
+        // 1e-9 of a multiple takes that multiple)
+        return max(label(1), label(std::ceil(dt/demDt_*(1 - 1e-9))));
+    }
     const label n = label(dt/demDt_ + 0.5);
     if (n < 1 || mag(n*demDt_ - dt) > 1e-6*dt)
     {
@@ -339,7 +347,9 @@ Foam::label Foam::demCoupling::subSteps(const scalar dt) const
             << "constant/demProperties: keyword dem/timeStep value "
             << demDt_ << ": the fluid time step deltaT " << dt
             << " s of system/controlDict is " << dt/demDt_ << " times it;"
-            << " allowed: deltaT a whole multiple (>= 1) of dem/timeStep"
+            << " allowed: deltaT a whole multiple (>= 1) of dem/timeStep,"
+            << " or dem/fitToFluidStep yes (equal DEM steps not longer than"
+            << " timeStep)"
             << exit(FatalIOError);
     }
     return n;

@@ -274,6 +274,18 @@ bool Foam::demCoupling::subStep(stepData& sd)
     const vectorField& vsCell = Up_.primitiveField();
     const label chunk =
         dragUpdateInterval_ > 0 ? min(dragUpdateInterval_, nDem) : nDem;
+    // the DEM step of this fluid step (dem/timeStep, or with
+    // fitToFluidStep deltaT/nDem: the core takes it as a changeable setting)
+    const scalar hDem = subStepLength(sd.dt, nDem);
+    if (config_.dt != hDem)
+    {
+        config_.dt = hDem;
+        world_.check
+        (
+            dem_world_configure_run(world_, &config_),
+            "dem_world_configure_run (the DEM step of this fluid step)"
+        );
+    }
 
     label done = 0;
     while (done < nDem)
@@ -327,7 +339,7 @@ bool Foam::demCoupling::subStep(stepData& sd)
                 forAll(extraForces_, k)
                 {
                     const vector f = sd.dragFac[s]*extraForces_[k].force(st);
-                    sd.impK[k][s] += f*(m*demDt_);
+                    sd.impK[k][s] += f*(m*hDem);
                     fx += f;
                 }
                 setVec(a.force_ext, j, sd.fPart[s] + fx);
@@ -336,7 +348,7 @@ bool Foam::demCoupling::subStep(stepData& sd)
             {
                 // fixed bed: no DEM motion; the exchange is the drag at v
                 const vector imp =
-                    toVec(a.drag_impulse, j) + K*(uf - v)*m*demDt_;
+                    toVec(a.drag_impulse, j) + K*(uf - v)*m*hDem;
                 setVec(a.drag_impulse, j, imp);
             }
         }

@@ -254,6 +254,7 @@ bool Foam::demCoupling::checkDictionary
         choice("contactLaw", laws),
         num("timeStep", kind::Scalar, 0, inf, true, false),
         num("dragUpdateInterval", kind::Label, 0, inf, false, false),
+        any("fitToFluidStep", kind::Bool),
         num("maxDtFraction", kind::Scalar, 0, inf, true, false),
         num("maxOverlapRatio", kind::Scalar, 0, inf, true, false),
         num("skin", kind::Scalar, 0, inf, false, false),
